@@ -1,0 +1,67 @@
+/* adhbem: adhesive normal contact of elastic solids with the boundary element method.
+   Public C API. Conventions follow PETSc: every function returns PetscErrorCode,
+   objects have Create / SetFromOptions / SetUp / View / Destroy, options use the adh_ prefix. */
+#ifndef ADHBEM_H
+#define ADHBEM_H
+
+#include <petscdmda.h>
+#include <petscksp.h>
+
+PETSC_EXTERN PetscClassId ADH_CLASSID;
+PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate;
+
+PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
+
+/* ---- influence.c: closed-form element integrals (DESIGN.md sections 2 and 3) ---- */
+
+/* Displacement at (x,y), relative to the centre of an hx x hy element carrying unit uniform
+   pressure, on a half-space of reduced modulus E* (Love, Johnson eq. 3.25). */
+PETSC_EXTERN PetscReal AdhLoveCoefficient(PetscReal x, PetscReal y, PetscReal hx, PetscReal hy, PetscReal Estar);
+/* Element self-energy factor chi: U_el = sigma^2 chi / E* (Pohrt & Popov eq. 11). */
+PETSC_EXTERN PetscReal AdhChi(PetscReal hx, PetscReal hy);
+/* The same for square elements, chi = 0.473201 h^3 (eq. 12). */
+PETSC_EXTERN PetscReal AdhChiSquare(PetscReal h);
+/* Mesh-dependent critical tensile stress Sigma = sqrt(hx hy E* dgamma / chi) (eq. 13). */
+PETSC_EXTERN PetscReal AdhCriticalStress(PetscReal hx, PetscReal hy, PetscReal Estar, PetscReal dgamma);
+
+/* ---- grid.c: the Nx x Ny element grid, distributed by rows ---- */
+
+typedef struct _n_AdhGrid *AdhGrid;
+struct _n_AdhGrid {
+  MPI_Comm  comm;
+  PetscInt  Nx, Ny;   /* elements per side */
+  PetscReal Lx, Ly;   /* domain side lengths */
+  PetscReal hx, hy;   /* element sizes Lx/Nx, Ly/Ny */
+  DM        da;       /* DMDA on Nx x Ny, one process column: each rank owns whole rows */
+  PetscBool setup;
+};
+
+PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);
+PETSC_EXTERN PetscErrorCode AdhGridSetSizes(AdhGrid, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly);
+PETSC_EXTERN PetscErrorCode AdhGridSetFromOptions(AdhGrid);
+PETSC_EXTERN PetscErrorCode AdhGridSetUp(AdhGrid);
+PETSC_EXTERN PetscErrorCode AdhGridView(AdhGrid, PetscViewer);
+PETSC_EXTERN PetscErrorCode AdhGridDestroy(AdhGrid *);
+/* Local rows owned by this rank: j in [ys, ys+ym), all i in [0, Nx). */
+PETSC_EXTERN PetscErrorCode AdhGridGetOwnership(AdhGrid, PetscInt *ys, PetscInt *ym);
+/* Centre of element (i,j): x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy (DESIGN.md section 8). */
+PETSC_EXTERN PetscErrorCode AdhGridGetCoordinates(AdhGrid, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y);
+
+/* ---- material.c: the reduced modulus ---- */
+
+/* E* from -adh_E_star, or from -adh_E1 -adh_nu1 -adh_E2 -adh_nu2; errors name the option. */
+PETSC_EXTERN PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm, const char prefix[], PetscReal *Estar);
+
+/* ---- compliance.c: the half-space compliance as a MatShell on distributed FFTW ---- */
+
+typedef enum { ADH_BOUNDARY_FREE, ADH_BOUNDARY_PERIODIC } AdhBoundary;
+PETSC_EXTERN const char *const AdhBoundaries[];
+
+/* Creates K with u = K p on the grid's layout. Options: -adh_fftw_planner estimate|measure|patient|exhaustive. */
+PETSC_EXTERN PetscErrorCode MatCreateAdhCompliance(AdhGrid, PetscReal Estar, AdhBoundary, Mat *);
+/* Lower bound on the smallest eigenvalue of K and of every principal submatrix K_CC. */
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
+/* Number of multiplies (FFT pairs) applied so far. */
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
+
+#endif

@@ -1,0 +1,279 @@
+/* The half-space compliance K (u = K p) as a MatShell whose multiply is a distributed FFTW
+   real-to-complex convolution.
+
+   free:     Love's influence coefficients on a zero-padded 2Ny x 2Nx grid with wrap-around, so
+             the cyclic convolution equals the exact linear one on the Ny x Nx physical grid.
+   periodic: the spectral multiplier 2/(E*|q|) on the Ny x Nx grid, q = 0 mode zero.
+
+   Arrays are row-major [j][i] (j along y, the distributed direction), as in FFTW-MPI. The forward
+   transform leaves its output transposed and the backward one takes it so, which saves FFTW two
+   global transposes per multiply. FFTW's slabs split the padded rows evenly, which leaves the
+   physical rows on half the ranks; one VecScatter, built once, moves the balanced grid layout to
+   FFTW's and back. Both layouts order the entries j*Nx + i, so it is a pure redistribution. */
+#include <fftw3-mpi.h>
+#include "adhbem.h"
+
+const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOUNDARY_", NULL};
+
+typedef struct {
+  MPI_Comm    comm;
+  AdhBoundary boundary;
+  PetscReal   Estar, hx, hy, Lx, Ly;
+  PetscInt    Nx, Ny;
+  ptrdiff_t   n0, n1;                                 /* transform size: rows (y), columns (x) */
+  ptrdiff_t   stride;                                 /* doubles per row of the in-place real array */
+  ptrdiff_t   local_n0, local_0_start, local_n1, local_1_start;
+  PetscInt    phys_rows;                              /* physical rows inside this rank's FFTW slab */
+  double     *data;                                   /* in-place transform array */
+  double     *multiplier;                             /* real kernel spectrum / (n0 n1), transposed layout */
+  fftw_plan   forward, backward;
+  Vec         xfft;                                   /* physical values in FFTW's row distribution */
+  VecScatter  toFFT;
+  PetscReal   lambda_min, diagonal;
+  PetscInt    nmult;
+} Compliance;
+
+static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
+{
+  Compliance        *c;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  fftw_complex      *spec;
+  ptrdiff_t          k, ncomplex;
+  PetscInt           r;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, x, y, 0));
+  PetscCall(VecScatterBegin(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
+
+  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
+  PetscCall(VecGetArrayRead(c->xfft, &xa));
+  for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(c->data + r * c->stride, xa + r * c->Nx, c->Nx));
+  PetscCall(VecRestoreArrayRead(c->xfft, &xa));
+
+  PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
+  fftw_execute(c->forward);
+  PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
+  spec     = (fftw_complex *)c->data;
+  ncomplex = c->local_n1 * c->n0;
+  for (k = 0; k < ncomplex; k++) {
+    spec[k][0] *= c->multiplier[k];
+    spec[k][1] *= c->multiplier[k];
+  }
+  PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
+  fftw_execute(c->backward);
+  PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
+
+  PetscCall(VecGetArrayWrite(c->xfft, &ya));
+  for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->data + r * c->stride, c->Nx));
+  PetscCall(VecRestoreArrayWrite(c->xfft, &ya));
+  PetscCall(VecScatterBegin(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+  c->nmult++;
+  PetscCall(PetscLogFlops(4.0 * ncomplex));
+  PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, x, y, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MatGetDiagonal_Compliance(Mat K, Vec d)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(VecSet(d, c->diagonal));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
+{
+  Compliance *c;
+  PetscBool   isascii;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (isascii) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; FFTW-MPI r2c transform %td x %td (transposed spectrum)\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->n1, c->n0));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g, multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, c->nmult));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MatDestroy_Compliance(Mat K)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  fftw_destroy_plan(c->forward);
+  fftw_destroy_plan(c->backward);
+  fftw_free(c->data);
+  PetscCall(PetscFree(c->multiplier));
+  PetscCall(VecDestroy(&c->xfft));
+  PetscCall(VecScatterDestroy(&c->toFFT));
+  PetscCall(PetscFree(c));
+  PetscFunctionReturn(0);
+}
+
+/* Real kernel in the local FFTW slab: free = Love coefficients at wrapped offsets (even in both
+   directions, so its spectrum is real); transformed once to give the multiplier. */
+static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
+{
+  fftw_complex *spec = (fftw_complex *)c->data;
+  ptrdiff_t     r, i, k, ncomplex = c->local_n1 * c->n0;
+  PetscReal     scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), lmin = PETSC_MAX_REAL;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
+  for (r = 0; r < c->local_n0; r++) {
+    ptrdiff_t row = c->local_0_start + r, dj = row <= c->Ny ? row : row - c->n0;
+    for (i = 0; i < c->n1; i++) {
+      ptrdiff_t di = i <= c->Nx ? i : i - c->n1;
+      c->data[r * c->stride + i] = AdhLoveCoefficient(di * c->hx, dj * c->hy, c->hx, c->hy, c->Estar);
+    }
+  }
+  fftw_execute(c->forward);
+  for (k = 0; k < ncomplex; k++) {
+    c->multiplier[k] = spec[k][0] * scale;
+    lmin             = PetscMin(lmin, spec[k][0]);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
+  /* K is a principal submatrix of this symmetric circulant, and so is every K_CC: by Cauchy
+     interlacing the smallest circulant eigenvalue bounds theirs from below. */
+  c->lambda_min = PetscMax(lmin, 0.0);
+  PetscFunctionReturn(0);
+}
+
+/* periodic: u_q = 2/(E* |q|) p_q with q = 2 pi (kx/Lx, ky/Ly); the mean (q = 0) is left to d. */
+static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
+{
+  ptrdiff_t a, k0;
+  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1);
+
+  PetscFunctionBegin;
+  for (a = 0; a < c->local_n1; a++) {
+    const ptrdiff_t kx = c->local_1_start + a; /* 0 .. n1/2: r2c keeps half the x modes */
+    for (k0 = 0; k0 < c->n0; k0++) {
+      const ptrdiff_t ky = k0 <= c->n0 / 2 ? k0 : k0 - c->n0;
+      const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
+      const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
+      c->multiplier[a * c->n0 + k0] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
+    }
+  }
+  /* The constant vector is in K's null space, so no positive bound holds for K itself. */
+  c->lambda_min = 0.0;
+  PetscFunctionReturn(0);
+}
+
+static unsigned PlannerFlag(PetscInt effort)
+{
+  const unsigned flags[] = {FFTW_ESTIMATE, FFTW_MEASURE, FFTW_PATIENT, FFTW_EXHAUSTIVE};
+  return flags[effort];
+}
+
+PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary boundary, Mat *K)
+{
+  static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
+  Compliance *c;
+  PetscInt    ys, ym, effort = 1, phys_start, first_row;
+  ptrdiff_t   alloc_local, nspec;
+  Vec         x, e;
+  IS          is;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(AdhGridSetUp(grid));
+  PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
+  PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
+  PetscOptionsBegin(grid->comm, NULL, "adhbem compliance", "Mat");
+  PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
+  PetscOptionsEnd();
+
+  PetscCall(PetscNew(&c));
+  c->comm     = grid->comm;
+  c->boundary = boundary;
+  c->Estar    = Estar;
+  c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
+  c->n0       = boundary == ADH_BOUNDARY_FREE ? 2 * c->Ny : c->Ny;
+  c->n1       = boundary == ADH_BOUNDARY_FREE ? 2 * c->Nx : c->Nx;
+  c->stride   = 2 * (c->n1 / 2 + 1);
+  alloc_local = fftw_mpi_local_size_2d_transposed(c->n0, c->n1 / 2 + 1, c->comm, &c->local_n0, &c->local_0_start, &c->local_n1, &c->local_1_start);
+  c->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
+  PetscCheck(c->data, c->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values", alloc_local);
+  nspec = c->local_n1 * c->n0;
+  PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
+  c->forward  = fftw_mpi_plan_dft_r2c_2d(c->n0, c->n1, c->data, (fftw_complex *)c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
+  c->backward = fftw_mpi_plan_dft_c2r_2d(c->n0, c->n1, (fftw_complex *)c->data, c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
+  PetscCheck(c->forward && c->backward, c->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", c->n0, c->n1);
+  if (boundary == ADH_BOUNDARY_FREE) PetscCall(ComputeFreeMultiplier(c));
+  else PetscCall(ComputePeriodicMultiplier(c));
+
+  /* The scatter between the grid's balanced rows and the physical rows of FFTW's slab. */
+  first_row    = (PetscInt)c->local_0_start;
+  c->phys_rows = (PetscInt)PetscMax(0, PetscMin(c->local_0_start + c->local_n0, (ptrdiff_t)c->Ny) - c->local_0_start);
+  phys_start   = PetscMin(first_row, c->Ny) * c->Nx;
+  PetscCall(VecCreateMPI(c->comm, c->phys_rows * c->Nx, c->Nx * c->Ny, &c->xfft));
+  PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
+  PetscCall(DMCreateGlobalVector(grid->da, &x));
+  PetscCall(ISCreateStride(c->comm, c->phys_rows * c->Nx, phys_start, 1, &is));
+  PetscCall(VecScatterCreate(x, is, c->xfft, is, &c->toFFT));
+  PetscCall(ISDestroy(&is));
+
+  PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
+  PetscCall(MatShellSetOperation(*K, MATOP_MULT, (void (*)(void))MatMult_Compliance));
+  PetscCall(MatShellSetOperation(*K, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Compliance));
+  PetscCall(MatShellSetOperation(*K, MATOP_GET_DIAGONAL, (void (*)(void))MatGetDiagonal_Compliance));
+  PetscCall(MatShellSetOperation(*K, MATOP_VIEW, (void (*)(void))MatView_Compliance));
+  PetscCall(MatShellSetOperation(*K, MATOP_DESTROY, (void (*)(void))MatDestroy_Compliance));
+  PetscCall(MatSetDM(*K, grid->da));
+  PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  if (boundary == ADH_BOUNDARY_FREE) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
+  PetscCall(MatSetUp(*K));
+
+  /* Translation invariance makes the diagonal one number: the response of element 0 to itself. */
+  PetscCall(VecDuplicate(x, &e));
+  PetscCall(VecSetValue(e, 0, 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(e));
+  PetscCall(VecAssemblyEnd(e));
+  PetscCall(MatMult(*K, e, x));
+  {
+    PetscScalar d0 = 0.0;
+    if (ys == 0) {
+      const PetscScalar *xa;
+      PetscCall(VecGetArrayRead(x, &xa));
+      d0 = xa[0];
+      PetscCall(VecRestoreArrayRead(x, &xa));
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d0, 1, MPIU_SCALAR, MPIU_SUM, c->comm));
+    c->diagonal = PetscRealPart(d0);
+  }
+  c->nmult = 0;
+  PetscCall(VecDestroy(&e));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  *lambda_min = c->lambda_min;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  *count = c->nmult;
+  PetscFunctionReturn(0);
+}

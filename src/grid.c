@@ -1,0 +1,110 @@
+/* The element grid: Nx x Ny rectangles of hx x hy, distributed by whole rows over the ranks. */
+#include "adhbem.h"
+
+PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
+{
+  AdhGrid g;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(PetscNew(&g));
+  g->comm = comm;
+  g->Nx = g->Ny = 64;
+  g->Lx = g->Ly = 1.0;
+  *grid = g;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly)
+{
+  PetscFunctionBegin;
+  PetscCheck(!g->setup, g->comm, PETSC_ERR_ORDER, "Cannot change the grid after AdhGridSetUp()");
+  g->Nx = Nx; g->Ny = Ny; g->Lx = Lx; g->Ly = Ly;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
+{
+  PetscInt  n[2] = {g->Nx, g->Ny}, nn = 2;
+  PetscReal L[2] = {g->Lx, g->Ly};
+  PetscInt  nLi = 2;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(g->comm, NULL, "adhbem grid", "AdhGrid");
+  PetscCall(PetscOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
+  if (set) {
+    PetscCheck(nn >= 1, g->comm, PETSC_ERR_ARG_WRONG, "-adh_n needs N or Nx,Ny");
+    if (nn == 1) n[1] = n[0];
+    g->Nx = n[0]; g->Ny = n[1];
+  }
+  PetscCall(PetscOptionsRealArray("-adh_size", "Domain side lengths: L or Lx,Ly", "AdhGridSetSizes", L, &nLi, &set));
+  if (set) {
+    PetscCheck(nLi >= 1, g->comm, PETSC_ERR_ARG_WRONG, "-adh_size needs L or Lx,Ly");
+    if (nLi == 1) L[1] = L[0];
+    g->Lx = L[0]; g->Ly = L[1];
+  }
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridSetUp(AdhGrid g)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  if (g->setup) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(g->comm, &size));
+  PetscCheck(g->Nx > 0 && g->Ny > 0, g->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: grid points per side must be positive, got %" PetscInt_FMT ",%" PetscInt_FMT, g->Nx, g->Ny);
+  PetscCheck(g->Lx > 0 && g->Ly > 0 && PetscIsNormalReal(g->Lx) && PetscIsNormalReal(g->Ly), g->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_size: domain side lengths must be positive and finite, got %g,%g", (double)g->Lx, (double)g->Ly);
+  PetscCheck(g->Ny >= size, g->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " rows cannot be shared by %d ranks (every rank owns at least one row); use fewer ranks or a larger Ny", g->Ny, size);
+  g->hx = g->Lx / g->Nx;
+  g->hy = g->Ly / g->Ny;
+  /* One process column (m = 1): each rank owns whole rows, so the global ordering is the natural
+     row-major one j*Nx + i, the same as FFTW's, and DMDA balances the rows to within one. */
+  PetscCall(DMDACreate2d(g->comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, g->Nx, g->Ny, 1, size, 1, 0, NULL, NULL, &g->da));
+  PetscCall(DMSetUp(g->da));
+  g->setup = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridGetOwnership(AdhGrid g, PetscInt *ys, PetscInt *ym)
+{
+  PetscInt xs, xm;
+
+  PetscFunctionBegin;
+  PetscCall(DMDAGetCorners(g->da, &xs, ys, NULL, &xm, ym, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y)
+{
+  PetscFunctionBegin;
+  if (x) *x = (i - g->Nx / 2) * g->hx;
+  if (y) *y = (j - g->Ny / 2) * g->hy;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
+{
+  PetscBool   isascii;
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(g->comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  PetscCallMPI(MPI_Comm_size(g->comm, &size));
+  if (isascii) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "AdhGrid: %" PetscInt_FMT " x %" PetscInt_FMT " elements of %g x %g, domain %g x %g, %d rank(s)\n", g->Nx, g->Ny, (double)g->hx, (double)g->hy, (double)g->Lx, (double)g->Ly, size));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridDestroy(AdhGrid *grid)
+{
+  PetscFunctionBegin;
+  if (!*grid) PetscFunctionReturn(0);
+  PetscCall(DMDestroy(&(*grid)->da));
+  PetscCall(PetscFree(*grid));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,40 @@
+/* The reduced modulus E* of two elastic bodies, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2. */
+#include "adhbem.h"
+
+static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, const char *nuname, PetscReal nu)
+{
+  PetscFunctionBegin;
+  PetscCheck(E > 0 && !PetscIsInfOrNanReal(E), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: Young's modulus must be positive and finite, got %g", Ename, (double)E);
+  PetscCheck(nu > -1.0 && nu <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: Poisson ratio must lie in (-1, 0.5], got %g", nuname, (double)nu);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[], PetscReal *Estar)
+{
+  PetscReal E1 = 1.0, nu1 = 0.0, E2 = PETSC_INFINITY, nu2 = 0.0, Es = *Estar;
+  PetscBool setEs, setE1, setE2, setnu1, setnu2;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(comm, prefix, "adhbem material", "AdhSolver");
+  PetscCall(PetscOptionsReal("-adh_E_star", "Reduced modulus E*", "", Es, &Es, &setEs));
+  PetscCall(PetscOptionsReal("-adh_E1", "Young's modulus of body 1 (instead of -adh_E_star)", "", E1, &E1, &setE1));
+  PetscCall(PetscOptionsReal("-adh_nu1", "Poisson ratio of body 1", "", nu1, &nu1, &setnu1));
+  PetscCall(PetscOptionsReal("-adh_E2", "Young's modulus of body 2 (default: rigid)", "", E2, &E2, &setE2));
+  PetscCall(PetscOptionsReal("-adh_nu2", "Poisson ratio of body 2", "", nu2, &nu2, &setnu2));
+  PetscOptionsEnd();
+  if (setE1 || setE2 || setnu1 || setnu2) {
+    PetscReal compliance = 0.0;
+    PetscCheck(!setEs, comm, PETSC_ERR_ARG_INCOMP, "-adh_E_star cannot be combined with -adh_E1/-adh_nu1/-adh_E2/-adh_nu2");
+    PetscCheck(setE1, comm, PETSC_ERR_ARG_WRONG, "-adh_E1 is required when -adh_nu1, -adh_E2 or -adh_nu2 is given");
+    PetscCall(CheckBody(comm, "-adh_E1", E1, "-adh_nu1", nu1));
+    compliance += (1.0 - nu1 * nu1) / E1;
+    if (setE2) {
+      PetscCall(CheckBody(comm, "-adh_E2", E2, "-adh_nu2", nu2));
+      compliance += (1.0 - nu2 * nu2) / E2;
+    } else PetscCheck(!setnu2, comm, PETSC_ERR_ARG_WRONG, "-adh_nu2 needs -adh_E2");
+    Es = 1.0 / compliance;
+  }
+  PetscCheck(Es > 0 && !PetscIsInfOrNanReal(Es), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Es);
+  *Estar = Es;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,32 @@
+/* Package registration: class id, log events, and FFTW-MPI initialisation, done once. */
+#include <fftw3-mpi.h>
+#include "adhbem.h"
+
+PetscClassId  ADH_CLASSID;
+PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate;
+
+static PetscBool AdhPackageInitialized = PETSC_FALSE;
+
+static PetscErrorCode AdhFinalizePackage(void)
+{
+  PetscFunctionBegin;
+  fftw_mpi_cleanup();
+  AdhPackageInitialized = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhInitializePackage(void)
+{
+  PetscFunctionBegin;
+  if (AdhPackageInitialized) PetscFunctionReturn(0);
+  AdhPackageInitialized = PETSC_TRUE;
+  fftw_mpi_init();
+  PetscCall(PetscClassIdRegister("Adhesive BEM", &ADH_CLASSID));
+  PetscCall(PetscLogEventRegister("AdhFFTForward", ADH_CLASSID, &ADH_FFTForward));
+  PetscCall(PetscLogEventRegister("AdhFFTBackward", ADH_CLASSID, &ADH_FFTBackward));
+  PetscCall(PetscLogEventRegister("AdhComplMult", ADH_CLASSID, &ADH_ComplianceMult));
+  PetscCall(PetscLogEventRegister("AdhStepSolve", ADH_CLASSID, &ADH_Solve));
+  PetscCall(PetscLogEventRegister("AdhSetUpdate", ADH_CLASSID, &ADH_SetUpdate));
+  PetscCall(PetscRegisterFinalize(AdhFinalizePackage));
+  PetscFunctionReturn(0);
+}

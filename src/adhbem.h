@@ -34,6 +34,7 @@ struct _n_AdhGrid {
   PetscReal hx, hy;   /* element sizes Lx/Nx, Ly/Ny */
   DM        da;       /* DMDA on Nx x Ny, one process column: each rank owns whole rows */
   PetscBool setup;
+  const char *prefix; /* options prefix (borrowed), also used by the compliance */
 };
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);
@@ -63,5 +64,49 @@ PETSC_EXTERN PetscErrorCode MatCreateAdhCompliance(AdhGrid, PetscReal Estar, Adh
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
 /* Number of multiplies (FFT pairs) applied so far. */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
+
+
+/* The periodic stiffness E*|q|/2 on the grid (the inverse compliance symbol), used to
+   precondition CG on the contact set. */
+PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Estar, Mat *);
+
+/* ---- solver.c: the Pohrt-Popov adhesive contact solver ---- */
+
+typedef struct _n_AdhSolver *AdhSolver;
+typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;
+PETSC_EXTERN const char *const AdhStarts[];
+
+/* One recorded state per indentation step. */
+typedef struct {
+  PetscInt   n, cap;
+  PetscReal *d, *force, *area, *seconds;
+  PetscInt  *contact_points, *outer_iterations, *ksp_iterations, *compliance_applications;
+} AdhCurve;
+
+PETSC_EXTERN PetscErrorCode AdhSolverCreate(MPI_Comm, AdhSolver *);
+PETSC_EXTERN PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver, const char[]);
+PETSC_EXTERN PetscErrorCode AdhSolverSetFromOptions(AdhSolver);
+PETSC_EXTERN PetscErrorCode AdhSolverSetUp(AdhSolver);
+/* Replaces the scalar work of adhesion by a field dgamma(x,y) (a Vec on the grid). */
+PETSC_EXTERN PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver, Vec);
+/* Starting state at indentation d (DESIGN.md section 4): hertz or adhesive (loaded from first touch). */
+PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal d);
+/* One step of the path: the contact set at indentation d, from the current set. */
+PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal d);
+/* The whole -adh_path, recording every state in the curve. */
+PETSC_EXTERN PetscErrorCode AdhSolverSolvePath(AdhSolver);
+PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);
+PETSC_EXTERN PetscErrorCode AdhSolverGetGrid(AdhSolver, AdhGrid *);
+PETSC_EXTERN PetscErrorCode AdhSolverGetCompliance(AdhSolver, Mat *);
+PETSC_EXTERN PetscErrorCode AdhSolverGetContactSet(AdhSolver, IS *);
+/* Fields on the grid: pressure p, displacement u = K p, gap g = h - d + u, indenter profile h,
+   critical stress Sigma. Borrowed references. */
+PETSC_EXTERN PetscErrorCode AdhSolverGetFields(AdhSolver, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma);
+PETSC_EXTERN PetscErrorCode AdhSolverGetCriticalStress(AdhSolver, PetscReal *);
+PETSC_EXTERN PetscErrorCode AdhSolverView(AdhSolver, PetscViewer);
+/* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
+   every step too). Files appear whole or not at all. */
+PETSC_EXTERN PetscErrorCode AdhSolverWriteOutput(AdhSolver, const char file[]);
+PETSC_EXTERN PetscErrorCode AdhSolverDestroy(AdhSolver *);
 
 #endif

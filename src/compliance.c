@@ -15,8 +15,12 @@
 
 const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOUNDARY_", NULL};
 
+/* What the multiplier is: the compliance (free or periodic) or the periodic stiffness. */
+typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
+
 typedef struct {
   MPI_Comm    comm;
+  Kind        kind;
   AdhBoundary boundary;
   PetscReal   Estar, hx, hy, Lx, Ly;
   PetscInt    Nx, Ny;
@@ -96,7 +100,8 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
   PetscCall(MatShellGetContext(K, &c));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
+    if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; FFTW-MPI r2c transform %td x %td (transposed spectrum)\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->n1, c->n0));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g, multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, c->nmult));
   }
@@ -169,14 +174,36 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
   PetscFunctionReturn(0);
 }
 
+/* Stiffness E*|q|/2, the inverse of the periodic compliance symbol; the mean mode gets the
+   value of the lowest nonzero wave number so the operator is positive definite. */
+static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
+{
+  ptrdiff_t a, k0;
+  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly);
+
+  PetscFunctionBegin;
+  for (a = 0; a < c->local_n1; a++) {
+    const ptrdiff_t kx = c->local_1_start + a;
+    for (k0 = 0; k0 < c->n0; k0++) {
+      const ptrdiff_t ky = k0 <= c->n0 / 2 ? k0 : k0 - c->n0;
+      const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
+      const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
+      c->multiplier[a * c->n0 + k0] = 0.5 * c->Estar * q * scale;
+    }
+  }
+  c->lambda_min = 0.5 * c->Estar * qmin;
+  PetscFunctionReturn(0);
+}
+
 static unsigned PlannerFlag(PetscInt effort)
 {
   const unsigned flags[] = {FFTW_ESTIMATE, FFTW_MEASURE, FFTW_PATIENT, FFTW_EXHAUSTIVE};
   return flags[effort];
 }
 
-PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary boundary, Mat *K)
+static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, Mat *K)
 {
+  const AdhBoundary boundary = kind == KIND_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   Compliance *c;
   PetscInt    ys, ym, effort = 1, phys_start, first_row;
@@ -188,13 +215,13 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
-  PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
-  PetscOptionsBegin(grid->comm, NULL, "adhbem compliance", "Mat");
+  PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
   PetscOptionsEnd();
 
   PetscCall(PetscNew(&c));
   c->comm     = grid->comm;
+  c->kind     = kind;
   c->boundary = boundary;
   c->Estar    = Estar;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
@@ -209,8 +236,9 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   c->forward  = fftw_mpi_plan_dft_r2c_2d(c->n0, c->n1, c->data, (fftw_complex *)c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
   c->backward = fftw_mpi_plan_dft_c2r_2d(c->n0, c->n1, (fftw_complex *)c->data, c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
   PetscCheck(c->forward && c->backward, c->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", c->n0, c->n1);
-  if (boundary == ADH_BOUNDARY_FREE) PetscCall(ComputeFreeMultiplier(c));
-  else PetscCall(ComputePeriodicMultiplier(c));
+  if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
+  else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
+  else PetscCall(ComputeStiffnessMultiplier(c));
 
   /* The scatter between the grid's balanced rows and the physical rows of FFTW's slab. */
   first_row    = (PetscInt)c->local_0_start;
@@ -232,7 +260,7 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   PetscCall(MatSetDM(*K, grid->da));
   PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-  if (boundary == ADH_BOUNDARY_FREE) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
+  if (kind != KIND_PERIODIC) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetUp(*K));
 
   /* Translation invariance makes the diagonal one number: the response of element 0 to itself. */
@@ -255,6 +283,21 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   c->nmult = 0;
   PetscCall(VecDestroy(&e));
   PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary boundary, Mat *K)
+{
+  PetscFunctionBegin;
+  PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
+  PetscCall(CreateFFTShell(grid, Estar, boundary == ADH_BOUNDARY_FREE ? KIND_FREE : KIND_PERIODIC, K));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat *S)
+{
+  PetscFunctionBegin;
+  PetscCall(CreateFFTShell(grid, Estar, KIND_STIFFNESS, S));
   PetscFunctionReturn(0);
 }
 

@@ -31,7 +31,7 @@ PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
   PetscBool set;
 
   PetscFunctionBegin;
-  PetscOptionsBegin(g->comm, NULL, "adhbem grid", "AdhGrid");
+  PetscOptionsBegin(g->comm, g->prefix, "adhbem grid", "AdhGrid");
   PetscCall(PetscOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
   if (set) {
     PetscCheck(nn >= 1, g->comm, PETSC_ERR_ARG_WRONG, "-adh_n needs N or Nx,Ny");

@@ -1,0 +1,189 @@
+/* One indentation step of the Pohrt-Popov algorithm (DESIGN.md section 4):
+     solve K_CC p_C = (d - h)_C with CG, detach every point with p < -Sigma, and once none is
+     left attach every point off the set that penetrates (g < 0); repeat until C is stable.
+   Detaching all violators at once is the paper's rule. Attach is tested only after a solve with
+   no violators, which costs one full multiply u = K p per attach test. */
+#include "solverimpl.h"
+
+/* The IS of the set (global indices of the local points in it) and K restricted to it. */
+PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
+{
+  PetscInt  nlocal, rstart, count = 0, k, *idx;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(s->p, &nlocal));
+  PetscCall(VecGetOwnershipRange(s->p, &rstart, NULL));
+  for (k = 0; k < nlocal; k++) count += s->in_set[k] ? 1 : 0;
+  PetscCall(PetscMalloc1(count, &idx));
+  for (k = 0, count = 0; k < nlocal; k++)
+    if (s->in_set[k]) idx[count++] = rstart + k;
+  PetscCall(ISDestroy(&s->contact));
+  PetscCall(ISCreateGeneral(s->comm, count, idx, PETSC_OWN_POINTER, &s->contact));
+  PetscCall(PetscObjectSetName((PetscObject)s->contact, "contact_set"));
+  PetscCall(ISGetSize(s->contact, &s->npoints));
+  PetscCall(MatDestroy(&s->Kcc));
+  /* KSP keeps work vectors of the old size; let it rebuild them for the new set. */
+  if (s->ksp) PetscCall(KSPReset(s->ksp));
+  if (s->npoints) PetscCall(MatCreateSubMatrixVirtual(s->K, s->contact, s->contact, &s->Kcc));
+  PetscFunctionReturn(0);
+}
+
+/* The allowed tension: Sigma while adhesive, zero while computing a Hertz start. */
+static Vec Threshold(AdhSolver s)
+{
+  return s->adhesive ? s->Sigma_field : s->zero;
+}
+
+/* KSP convergence test: the full tolerance ||r|| <= max(rtol ||b||, atol), or, for a solve whose
+   only job is to find the points to detach, a certified early stop. Since every eigenvalue of K_CC
+   is at least lambda_min (Cauchy interlacing), |p_k - p*_k| <= ||r||_2 / lambda_min; once every
+   point's margin |p_k + Sigma_k| exceeds that bound and some point violates, the set of points to
+   detach is the exact solution's and the solve can stop. The factor 2 covers the difference
+   between CG's recursive residual and the true one. */
+PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
+{
+  AdhSolver          s = (AdhSolver)ctx;
+  PetscReal          rtol, atol, dtol;
+  PetscInt           maxits;
+
+  PetscFunctionBegin;
+  *reason = KSP_CONVERGED_ITERATING;
+  PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxits));
+  if (PetscIsInfOrNanReal(rnorm)) {
+    *reason = KSP_DIVERGED_NANORINF;
+    PetscFunctionReturn(0);
+  }
+  if (rnorm <= PetscMax(rtol * s->bnorm, atol)) {
+    *reason = KSP_CONVERGED_RTOL;
+    PetscFunctionReturn(0);
+  }
+  if (s->certify && it > 0) {
+    Vec                x;
+    const PetscScalar *xa;
+    PetscInt           n, k;
+    PetscReal          bound = 2.0 * rnorm / s->lambda_min, v[2] = {-PETSC_MAX_REAL, 0.0};
+
+    PetscCall(KSPBuildSolution(ksp, NULL, &x));
+    PetscCall(VecGetLocalSize(x, &n));
+    PetscCall(VecGetArrayRead(x, &xa));
+    for (k = 0; k < n; k++) {
+      const PetscReal margin = PetscRealPart(xa[k]) + PetscRealPart(s->threshold_local[k]);
+      v[0]                   = PetscMax(v[0], -PetscAbsReal(margin)); /* max of -|margin| = -min |margin| */
+      if (margin < 0) v[1] = 1.0;
+    }
+    PetscCall(VecRestoreArrayRead(x, &xa));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ksp)));
+    if (-v[0] > bound && v[1] > 0) {
+      *reason           = KSP_CONVERGED_ATOL; /* marked by certified_stop */
+      s->certified_stop = PETSC_TRUE;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* p_C from K_CC p_C = (d - h)_C, warm-started from the current p; p = 0 off the set. */
+static PetscErrorCode SolveOnSet(AdhSolver s)
+{
+  Vec                pC, hC, bC, thrC;
+  KSPConvergedReason reason;
+  PetscInt           its;
+
+  PetscFunctionBegin;
+  s->certified_stop = PETSC_FALSE;
+  if (!s->npoints) PetscFunctionReturn(0);
+  PetscCall(VecGetSubVector(s->p, s->contact, &pC));
+  PetscCall(VecGetSubVector(s->h, s->contact, &hC));
+  PetscCall(VecGetSubVector(Threshold(s), s->contact, &thrC));
+  PetscCall(VecDuplicate(hC, &bC));
+  PetscCall(VecAXPBY(bC, -1.0, 0.0, hC));
+  PetscCall(VecShift(bC, s->d));
+  PetscCall(VecNorm(bC, NORM_2, &s->bnorm));
+  PetscCall(VecGetArrayRead(thrC, &s->threshold_local));
+  PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
+  PetscCall(KSPSolve(s->ksp, bC, pC));
+  PetscCall(VecRestoreArrayRead(thrC, &s->threshold_local));
+  PetscCall(KSPGetConvergedReason(s->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(s->ksp, &its));
+  s->step_ksp += its;
+  PetscCall(VecDestroy(&bC));
+  PetscCall(VecRestoreSubVector(Threshold(s), s->contact, &thrC));
+  PetscCall(VecRestoreSubVector(s->h, s->contact, &hC));
+  PetscCall(VecRestoreSubVector(s->p, s->contact, &pC));
+  PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The KSP solve on the contact set (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_ksp_rtol, -adh_ksp_max_it, -adh_ksp_monitor)", s->npoints, (double)s->d, KSPConvergedReasons[reason], its);
+  PetscFunctionReturn(0);
+}
+
+/* Remove every point of the set whose tension exceeds its critical stress, p < -Sigma. */
+static PetscErrorCode Detach(AdhSolver s, PetscInt *removed)
+{
+  PetscScalar       *pa;
+  const PetscScalar *ta;
+  PetscInt           n, k, count = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(s->p, &n));
+  PetscCall(VecGetArray(s->p, &pa));
+  PetscCall(VecGetArrayRead(Threshold(s), &ta));
+  for (k = 0; k < n; k++)
+    if (s->in_set[k] && PetscRealPart(pa[k]) < -PetscRealPart(ta[k])) {
+      s->in_set[k] = 0;
+      pa[k]        = 0.0;
+      count++;
+    }
+  PetscCall(VecRestoreArrayRead(Threshold(s), &ta));
+  PetscCall(VecRestoreArray(s->p, &pa));
+  PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
+  PetscFunctionReturn(0);
+}
+
+/* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0. */
+static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
+{
+  const PetscScalar *ga;
+  PetscInt           n, k, count = 0;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(s->K, s->p, s->u));
+  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
+  PetscCall(VecShift(s->g, -s->d));
+  PetscCall(VecGetLocalSize(s->g, &n));
+  PetscCall(VecGetArrayRead(s->g, &ga));
+  for (k = 0; k < n; k++)
+    if (!s->in_set[k] && PetscRealPart(ga[k]) < 0) {
+      s->in_set[k] = 1;
+      count++;
+    }
+  PetscCall(VecRestoreArrayRead(s->g, &ga));
+  PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal d)
+{
+  PetscInt outer, removed, added, mults0, mults1;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverSetUp(s));
+  PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
+  PetscCall(MatAdhComplianceGetMultCount(s->K, &mults0));
+  s->d          = d;
+  s->step_outer = 0;
+  s->step_ksp   = 0;
+  for (outer = 1;; outer++) {
+    PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
+    PetscCall(SolveOnSet(s));
+    PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
+    PetscCall(Detach(s, &removed));
+    PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
+    added = 0;
+    if (!removed) PetscCall(Attach(s, &added));
+    if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
+    PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
+    if (!removed && !added) break;
+  }
+  s->step_outer = outer;
+  PetscCall(MatAdhComplianceGetMultCount(s->K, &mults1));
+  s->step_mults = mults1 - mults0;
+  PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,20 @@
+/* Indenter profiles (indenter.c). */
+#ifndef ADHBEM_INDENTER_H
+#define ADHBEM_INDENTER_H
+#include "adhbem.h"
+
+typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE } AdhIndenterType;
+PETSC_EXTERN const char *const AdhIndenterTypes[];
+
+typedef struct {
+  AdhIndenterType type;
+  PetscReal       radius;       /* sphere */
+  PetscReal       punch_radius; /* punch */
+  PetscReal       cone_slope;   /* cone */
+  char            topography[PETSC_MAX_PATH_LEN];
+  char            dataset[256];
+} AdhIndenter;
+
+PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhGrid, AdhIndenter *);
+PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, const AdhIndenter *, Vec h);
+#endif

@@ -1,0 +1,237 @@
+/* Results: HDF5 through PETSc's viewer (curve in /curve, parameters as root attributes, fields
+   in /fields) and the curve as CSV. Both are written to FILE.part and renamed when complete, so
+   a result file is never half-written and an older one is not lost to a failed run. */
+#include <errno.h>
+#include "solverimpl.h"
+
+static PetscErrorCode PartName(const char file[], char part[], size_t len)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(part, len, "%s.part", file));
+  PetscFunctionReturn(0);
+}
+
+/* FILE.h5 -> FILE.csv; other names get .csv appended. */
+static PetscErrorCode CSVName(const char file[], char csv[], size_t len)
+{
+  size_t n;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrlen(file, &n));
+  if (n > 3 && !strcmp(file + n - 3, ".h5")) {
+    PetscCall(PetscSNPrintf(csv, len, "%.*s.csv", (int)(n - 3), file));
+  } else PetscCall(PetscSNPrintf(csv, len, "%s.csv", file));
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0 tries to create the file; everyone learns the answer, so a bad path fails before any
+   work with a message that names it. */
+PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char file[])
+{
+  char        part[PETSC_MAX_PATH_LEN + 8], reason[256] = "";
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(PartName(file, part, sizeof(part)));
+  if (!rank) {
+    FILE *fp = fopen(part, "w");
+    if (!fp) {
+      ok = 0;
+      PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+    } else {
+      fclose(fp);
+      remove(part);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(reason, sizeof(reason), MPI_CHAR, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_OPEN, "-adh_output: cannot write %s: %s", file, reason);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+{
+  char part[PETSC_MAX_PATH_LEN + 8];
+
+  PetscFunctionBegin;
+  PetscCall(AdhOutputCheckWritable_Private(s, file));
+  PetscCall(PartName(file, part, sizeof(part)));
+  PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt step)
+{
+  Vec          mask;
+  PetscScalar *ma;
+  PetscInt     n, k;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(s->p, &mask));
+  PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
+  PetscCall(VecGetLocalSize(mask, &n));
+  PetscCall(VecGetArrayWrite(mask, &ma));
+  for (k = 0; k < n; k++) ma[k] = s->in_set[k] ? 1.0 : 0.0;
+  PetscCall(VecRestoreArrayWrite(mask, &ma));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/fields"));
+  if (step == 0) {
+    PetscCall(VecView(s->h, viewer));
+    PetscCall(VecView(s->Sigma_field, viewer));
+  }
+  PetscCall(PetscViewerHDF5PushTimestepping(viewer));
+  PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
+  PetscCall(VecView(s->p, viewer));
+  PetscCall(VecView(s->u, viewer));
+  PetscCall(VecView(s->g, viewer));
+  PetscCall(VecView(mask, viewer));
+  PetscCall(PetscViewerHDF5PopTimestepping(viewer));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(VecDestroy(&mask));
+  PetscFunctionReturn(0);
+}
+
+/* A 1-D dataset held by rank 0. */
+static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char name[], PetscInt n, const PetscReal *values)
+{
+  PetscMPIInt  rank;
+  Vec          v;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : n, n, &v));
+  PetscCall(PetscObjectSetName((PetscObject)v, name));
+  PetscCall(VecGetArrayWrite(v, &a));
+  if (!rank)
+    for (PetscInt k = 0; k < n; k++) a[k] = values[k];
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscCall(VecView(v, viewer));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteIntArray(AdhSolver s, PetscViewer viewer, const char name[], PetscInt n, const PetscInt *values)
+{
+  PetscMPIInt rank;
+  IS          is;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(ISCreateGeneral(s->comm, rank ? 0 : n, values, PETSC_USE_POINTER, &is));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISView(is, viewer));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
+{
+  const AdhGrid g = s->grid;
+  PetscMPIInt   size;
+  PetscInt      nranks;
+  PetscReal     rtol, atol, dtol;
+  PetscInt      maxits;
+  KSPType       ksptype;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  nranks = size;
+  PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
+  PetscCall(KSPGetType(s->ksp, &ksptype));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "E_star", PETSC_REAL, &s->Estar));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma", PETSC_REAL, &s->gamma));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field", PETSC_BOOL, s->gamma_field ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Sigma", PETSC_REAL, &s->Sigma));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress_fixed", PETSC_BOOL, s->sigma_fixed > 0 ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hy", PETSC_REAL, &g->hy));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Lx", PETSC_REAL, &g->Lx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Ly", PETSC_REAL, &g->Ly));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Nx", PETSC_INT, &g->Nx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Ny", PETSC_INT, &g->Ny));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "nranks", PETSC_INT, &nranks));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "boundary", PETSC_STRING, AdhBoundaries[s->boundary]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "start", PETSC_STRING, AdhStarts[s->start]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));
+  switch (s->indenter.type) {
+  case ADH_INDENTER_SPHERE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "radius", PETSC_REAL, &s->indenter.radius)); break;
+  case ADH_INDENTER_PUNCH: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "punch_radius", PETSC_REAL, &s->indenter.punch_radius)); break;
+  case ADH_INDENTER_CONE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cone_slope", PETSC_REAL, &s->indenter.cone_slope)); break;
+  case ADH_INDENTER_FILE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography", PETSC_STRING, s->indenter.topography)); break;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteCSV(AdhSolver s, const char csv[])
+{
+  const AdhCurve *c = &s->curve;
+  PetscMPIInt     rank;
+  char            part[PETSC_MAX_PATH_LEN + 8];
+  int             ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(PartName(csv, part, sizeof(part)));
+  if (!rank) {
+    FILE *fp = fopen(part, "w");
+    if (fp) {
+      fprintf(fp, "step,d,force,area,contact_points,outer_iterations,ksp_iterations,seconds\n");
+      for (PetscInt k = 0; k < c->n; k++)
+        fprintf(fp, "%" PetscInt_FMT ",%.17g,%.17g,%.17g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.6f\n", k, (double)c->d[k], (double)c->force[k], (double)c->area[k], c->contact_points[k], c->outer_iterations[k], c->ksp_iterations[k], (double)c->seconds[k]);
+      ok = !ferror(fp);
+      ok = (fclose(fp) == 0) && ok;
+      ok = ok && rename(part, csv) == 0;
+    } else ok = 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", csv);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+{
+  const AdhCurve *c = &s->curve;
+  char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8];
+  PetscMPIInt     rank;
+  int             ok = 1;
+
+  PetscFunctionBegin;
+  PetscCall(WriteAttributes(s, *viewer));
+  PetscCall(PetscViewerHDF5PushGroup(*viewer, "/curve"));
+  PetscCall(WriteRealArray(s, *viewer, "d", c->n, c->d));
+  PetscCall(WriteRealArray(s, *viewer, "force", c->n, c->force));
+  PetscCall(WriteRealArray(s, *viewer, "area", c->n, c->area));
+  PetscCall(WriteRealArray(s, *viewer, "seconds", c->n, c->seconds));
+  PetscCall(WriteIntArray(s, *viewer, "contact_points", c->n, c->contact_points));
+  PetscCall(WriteIntArray(s, *viewer, "outer_iterations", c->n, c->outer_iterations));
+  PetscCall(WriteIntArray(s, *viewer, "ksp_iterations", c->n, c->ksp_iterations));
+  PetscCall(WriteIntArray(s, *viewer, "compliance_applications", c->n, c->compliance_applications));
+  PetscCall(WriteRealArray(s, *viewer, "path", s->npath, s->path));
+  PetscCall(PetscViewerHDF5PopGroup(*viewer));
+  PetscCall(PetscViewerDestroy(viewer));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(PartName(file, part, sizeof(part)));
+  if (!rank) ok = rename(part, file) == 0;
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s", part, file);
+  PetscCall(CSVName(file, csv, sizeof(csv)));
+  PetscCall(WriteCSV(s, csv));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
+{
+  PetscViewer viewer;
+
+  PetscFunctionBegin;
+  PetscCall(AdhOutputOpen_Private(s, file, &viewer));
+  if (s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, 0));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE}));
+  PetscCall(AdhOutputClose_Private(s, file, &viewer));
+  PetscFunctionReturn(0);
+}

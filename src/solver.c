@@ -1,0 +1,277 @@
+/* AdhSolver: lifecycle, options and set-up of the adhesive contact solver. The step algorithm
+   is in contact.c, paths in path.c, output in output.c. */
+#include "solverimpl.h"
+
+const char *const AdhStarts[] = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
+
+PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
+{
+  AdhSolver s;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(PetscNew(&s));
+  s->comm                  = comm;
+  s->boundary              = ADH_BOUNDARY_FREE;
+  s->Estar                 = 1.0;
+  s->gamma                 = 0.0;
+  s->indenter.type         = ADH_INDENTER_SPHERE;
+  s->indenter.radius       = 1.0;
+  s->indenter.punch_radius = 0.25;
+  s->indenter.cone_slope   = 0.1;
+  PetscCall(PetscStrncpy(s->indenter.dataset, "h", sizeof(s->indenter.dataset)));
+  s->start     = ADH_START_HERTZ;
+  s->steps     = 10;
+  s->max_outer = 100000;
+  s->adhesive  = PETSC_TRUE;
+  s->certify   = PETSC_TRUE;
+  PetscCall(PetscMalloc1(2, &s->path));
+  s->npath   = 2;
+  s->path[0] = 0.01;
+  s->path[1] = 0.0;
+  PetscCall(AdhGridCreate(comm, &s->grid));
+  *solver = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(s->prefix));
+  PetscCall(PetscStrallocpy(prefix, &s->prefix));
+  s->grid->prefix = s->prefix;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
+{
+  PetscInt  n = 256;
+  PetscReal path[256];
+  PetscBool set, certify = s->certify;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridSetFromOptions(s->grid));
+  PetscCall(AdhGetReducedModulusFromOptions(s->comm, s->prefix, &s->Estar));
+  PetscCall(AdhIndenterSetFromOptions(s->comm, s->prefix, s->grid, &s->indenter));
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesive contact solver", "AdhSolver");
+  PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
+  PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
+  PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, NULL));
+  PetscCall(PetscOptionsRealArray("-adh_path", "Indentation path breakpoints d0,d1,...", "AdhSolver", path, &n, &set));
+  if (set) {
+    PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
+    PetscCall(PetscFree(s->path));
+    PetscCall(PetscMalloc1(n, &s->path));
+    PetscCall(PetscArraycpy(s->path, path, n));
+    s->npath = n;
+  }
+  PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
+  PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
+  PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
+  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step", "AdhSolver", s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsBool("-adh_fields", "Write pressure, displacement, gap and contact mask of every step", "AdhSolver", s->fields, &s->fields, NULL));
+  PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
+  PetscOptionsEnd();
+  s->certify = certify;
+  PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
+  PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
+  PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
+  for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
+  if (s->ksp) PetscCall(KSPSetFromOptions(s->ksp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
+{
+  PetscReal min;
+
+  PetscFunctionBegin;
+  PetscCall(VecMin(gamma, NULL, &min));
+  PetscCheck(min >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The work of adhesion field must be >= 0 everywhere, its minimum is %g", (double)min);
+  PetscCall(PetscObjectReference((PetscObject)gamma));
+  PetscCall(VecDestroy(&s->gamma_field));
+  s->gamma_field = gamma;
+  if (s->setup) PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
+  PetscFunctionReturn(0);
+}
+
+/* Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi), or the fixed stress of -adh_critical_stress. */
+static PetscErrorCode ComputeCriticalStress(AdhSolver s)
+{
+  const AdhGrid g = s->grid;
+
+  PetscFunctionBegin;
+  s->Sigma = s->sigma_fixed > 0 ? s->sigma_fixed : AdhCriticalStress(g->hx, g->hy, s->Estar, s->gamma);
+  if (s->gamma_field && !(s->sigma_fixed > 0)) {
+    PetscCall(VecCopy(s->gamma_field, s->Sigma_field));
+    PetscCall(VecScale(s->Sigma_field, g->hx * g->hy * s->Estar / AdhChi(g->hx, g->hy)));
+    PetscCall(VecSqrtAbs(s->Sigma_field));
+  } else PetscCall(VecSet(s->Sigma_field, s->Sigma));
+  PetscFunctionReturn(0);
+}
+
+/* The Fourier preconditioner: z = R S R^T r, with S the periodic stiffness E*|q|/2 on the whole
+   grid and R the restriction to the contact set. */
+static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
+{
+  AdhSolver s;
+  Vec       full, out;
+
+  PetscFunctionBegin;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(DMGetGlobalVector(s->grid->da, &full));
+  PetscCall(DMGetGlobalVector(s->grid->da, &out));
+  PetscCall(VecSet(full, 0.0));
+  PetscCall(VecISCopy(full, s->contact, SCATTER_FORWARD, r));
+  PetscCall(MatMult(s->S, full, out));
+  PetscCall(VecISCopy(out, s->contact, SCATTER_REVERSE, z));
+  PetscCall(DMRestoreGlobalVector(s->grid->da, &full));
+  PetscCall(DMRestoreGlobalVector(s->grid->da, &out));
+  PetscFunctionReturn(0);
+}
+
+PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *);
+
+PetscErrorCode AdhSolverSetUp(AdhSolver s)
+{
+  PC       pc;
+  PetscInt nlocal;
+  char     kspprefix[256];
+
+  PetscFunctionBegin;
+  if (!s->setup) {
+    PetscCall(AdhGridSetUp(s->grid));
+    PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
+    PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
+    PetscCall(MatAdhComplianceGetLambdaMin(s->K, &s->lambda_min));
+    PetscCall(DMCreateGlobalVector(s->grid->da, &s->h));
+    PetscCall(VecDuplicate(s->h, &s->Sigma_field));
+    PetscCall(VecDuplicate(s->h, &s->p));
+    PetscCall(VecDuplicate(s->h, &s->u));
+    PetscCall(VecDuplicate(s->h, &s->g));
+    PetscCall(VecDuplicate(s->h, &s->zero));
+    PetscCall(PetscObjectSetName((PetscObject)s->h, "profile"));
+    PetscCall(PetscObjectSetName((PetscObject)s->p, "pressure"));
+    PetscCall(PetscObjectSetName((PetscObject)s->u, "displacement"));
+    PetscCall(PetscObjectSetName((PetscObject)s->g, "gap"));
+    PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
+    PetscCall(VecSet(s->zero, 0.0));
+    PetscCall(VecSet(s->p, 0.0));
+    PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
+    PetscCall(VecGetLocalSize(s->h, &nlocal));
+    PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
+    PetscCall(AdhSolverRebuildSet_Private(s));
+
+    PetscCall(KSPCreate(s->comm, &s->ksp));
+    PetscCall(PetscSNPrintf(kspprefix, sizeof(kspprefix), "%sadh_", s->prefix ? s->prefix : ""));
+    PetscCall(KSPSetOptionsPrefix(s->ksp, kspprefix));
+    PetscCall(KSPSetType(s->ksp, KSPCG));
+    PetscCall(KSPSetNormType(s->ksp, KSP_NORM_UNPRECONDITIONED));
+    PetscCall(KSPSetTolerances(s->ksp, 1e-10, 0.0, PETSC_DEFAULT, 100000));
+    PetscCall(KSPSetInitialGuessNonzero(s->ksp, PETSC_TRUE));
+    PetscCall(KSPGetPC(s->ksp, &pc));
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, s));
+    PetscCall(PCShellSetApply(pc, PCApply_Fourier));
+    PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: periodic stiffness E*|q|/2 restricted to the contact set"));
+    PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
+    PetscCall(KSPSetFromOptions(s->ksp));
+    s->setup = PETSC_TRUE;
+  }
+  PetscCall(ComputeCriticalStress(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
+{
+  PetscFunctionBegin;
+  *grid = s->grid;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
+{
+  PetscFunctionBegin;
+  *K = s->K;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
+{
+  PetscFunctionBegin;
+  *is = s->contact;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma)
+{
+  PetscFunctionBegin;
+  if (p) *p = s->p;
+  if (u) *u = s->u;
+  if (g) *g = s->g;
+  if (h) *h = s->h;
+  if (Sigma) *Sigma = s->Sigma_field;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
+{
+  PetscFunctionBegin;
+  *Sigma = s->Sigma;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
+{
+  PetscFunctionBegin;
+  *curve = &s->curve;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
+{
+  PetscBool isascii;
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "AdhSolver: Pohrt-Popov adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(AdhGridView(s->grid, viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "lambda_min bound %g, certified early stop %s\n", (double)s->lambda_min, s->certify && s->lambda_min > 0 ? "on" : "off"));
+  if (s->ksp) PetscCall(KSPView(s->ksp, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
+{
+  AdhSolver s = *solver;
+
+  PetscFunctionBegin;
+  if (!s) PetscFunctionReturn(0);
+  PetscCall(KSPDestroy(&s->ksp));
+  PetscCall(MatDestroy(&s->Kcc));
+  PetscCall(MatDestroy(&s->K));
+  PetscCall(MatDestroy(&s->S));
+  PetscCall(ISDestroy(&s->contact));
+  PetscCall(VecDestroy(&s->h));
+  PetscCall(VecDestroy(&s->Sigma_field));
+  PetscCall(VecDestroy(&s->p));
+  PetscCall(VecDestroy(&s->u));
+  PetscCall(VecDestroy(&s->g));
+  PetscCall(VecDestroy(&s->zero));
+  PetscCall(VecDestroy(&s->gamma_field));
+  PetscCall(PetscFree(s->in_set));
+  PetscCall(PetscFree(s->path));
+  PetscCall(AdhCurveDestroy_Private(&s->curve));
+  PetscCall(AdhGridDestroy(&s->grid));
+  PetscCall(PetscFree(s->prefix));
+  PetscCall(PetscFree(s));
+  *solver = NULL;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,64 @@
+/* The AdhSolver's insides, shared by solver.c (lifecycle), contact.c (one step), path.c
+   (indentation paths) and output.c (HDF5/CSV). */
+#ifndef ADHBEM_SOLVERIMPL_H
+#define ADHBEM_SOLVERIMPL_H
+#include <petscviewerhdf5.h>
+#include "adhbem.h"
+#include "indenter.h"
+
+struct _n_AdhSolver {
+  MPI_Comm    comm;
+  char       *prefix;
+  PetscBool   setup;
+
+  /* problem */
+  AdhGrid     grid;
+  AdhBoundary boundary;
+  AdhIndenter indenter;
+  PetscReal   Estar, gamma;
+  PetscReal   sigma_fixed;    /* > 0: a mesh-independent critical stress replaces Pohrt-Popov's */
+  PetscReal   Sigma;          /* critical stress of the scalar dgamma (for reports) */
+  Vec         gamma_field;    /* optional dgamma(x,y) */
+
+  /* operators and fields on the grid */
+  Mat       K;                /* compliance */
+  Mat       S;                /* periodic stiffness: the preconditioner */
+  Vec       h, Sigma_field, p, u, g, zero;
+  PetscReal lambda_min;       /* lower bound on eigenvalues of every K_CC */
+
+  /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
+  char     *in_set;
+  IS        contact;
+  PetscInt  npoints;          /* global size of the set */
+  KSP       ksp;
+  Mat       Kcc;
+
+  /* the current solve, read by the convergence test and the preconditioner */
+  const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
+  PetscReal bnorm;
+  PetscBool certify, certified_stop;
+
+  /* state and counters */
+  PetscReal d;
+  PetscBool adhesive;         /* false while computing a Hertz (dgamma = 0) start */
+  PetscInt  max_outer;
+  PetscInt  step_outer, step_ksp, step_mults;
+  PetscInt  total_pc_mults;
+
+  /* path and output */
+  PetscReal *path;
+  PetscInt   npath, steps;
+  AdhStart   start;
+  PetscBool  monitor, fields;
+  char       output[PETSC_MAX_PATH_LEN];
+  AdhCurve   curve;
+};
+
+PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, PetscReal d, PetscReal F, PetscReal A, PetscInt pts, PetscInt outer, PetscInt ksp, PetscInt mults, PetscReal sec);
+PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
+PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
+PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);
+PETSC_INTERN PetscErrorCode AdhOutputClose_Private(AdhSolver, const char file[], PetscViewer *);
+PETSC_INTERN PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver, const char file[]);
+#endif

@@ -103,6 +103,9 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetContactSet(AdhSolver, IS *);
    critical stress Sigma. Borrowed references. */
 PETSC_EXTERN PetscErrorCode AdhSolverGetFields(AdhSolver, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriticalStress(AdhSolver, PetscReal *);
+/* The current state: indentation, force, area, points in contact, and the last step's counts
+   (set updates, KSP iterations, compliance applications). */
+PETSC_EXTERN PetscErrorCode AdhSolverGetState(AdhSolver, PetscReal *d, PetscReal *F, PetscReal *A, PetscInt *points, PetscInt *outer, PetscInt *ksp, PetscInt *mults);
 PETSC_EXTERN PetscErrorCode AdhSolverView(AdhSolver, PetscViewer);
 /* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
    every step too). Files appear whole or not at all. */

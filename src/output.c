@@ -112,17 +112,16 @@ static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char
   PetscFunctionReturn(0);
 }
 
+/* Counts as a 1-D dataset too (stored as float64: PETSc's IS viewer adds a block dimension). */
 static PetscErrorCode WriteIntArray(AdhSolver s, PetscViewer viewer, const char name[], PetscInt n, const PetscInt *values)
 {
-  PetscMPIInt rank;
-  IS          is;
+  PetscReal *r;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(ISCreateGeneral(s->comm, rank ? 0 : n, values, PETSC_USE_POINTER, &is));
-  PetscCall(PetscObjectSetName((PetscObject)is, name));
-  PetscCall(ISView(is, viewer));
-  PetscCall(ISDestroy(&is));
+  PetscCall(PetscMalloc1(n + 1, &r));
+  for (PetscInt k = 0; k < n; k++) r[k] = (PetscReal)values[k];
+  PetscCall(WriteRealArray(s, viewer, name, n, r));
+  PetscCall(PetscFree(r));
   PetscFunctionReturn(0);
 }
 

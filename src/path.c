@@ -90,18 +90,31 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal d0)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscReal *A, PetscInt *points, PetscInt *outer, PetscInt *ksp, PetscInt *mults)
+{
+  PetscScalar sum;
+
+  PetscFunctionBegin;
+  PetscCall(VecSum(s->p, &sum));
+  if (d) *d = s->d;
+  if (F) *F = PetscRealPart(sum) * s->grid->hx * s->grid->hy;
+  if (A) *A = s->npoints * s->grid->hx * s->grid->hy;
+  if (points) *points = s->npoints;
+  if (outer) *outer = s->step_outer;
+  if (ksp) *ksp = s->step_ksp;
+  if (mults) *mults = s->step_mults;
+  PetscFunctionReturn(0);
+}
+
 /* Appends the current state to the curve, prints it with -adh_monitor, writes its fields. */
 static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
 {
-  PetscScalar    sum;
   PetscReal      F, A;
   PetscLogDouble t1;
 
   PetscFunctionBegin;
   PetscCall(PetscTime(&t1));
-  PetscCall(VecSum(s->p, &sum));
-  F = PetscRealPart(sum) * s->grid->hx * s->grid->hy;
-  A = s->npoints * s->grid->hx * s->grid->hy;
+  PetscCall(AdhSolverGetState(s, NULL, &F, &A, NULL, NULL, NULL, NULL));
   PetscCall(AdhCurveAppend_Private(&s->curve, s->d, F, A, s->npoints, s->step_outer, s->step_ksp, s->step_mults, (PetscReal)(t1 - t0)));
   if (s->monitor) {
     if (s->curve.n == 1) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "outer", "ksp", "K-mults", "seconds"));

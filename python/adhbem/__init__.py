@@ -18,7 +18,7 @@ from petsc4py import PETSc  # noqa: E402
 from . import _adhbem  # noqa: E402
 from ._adhbem import chi, chi_square, critical_stress, love_coefficient  # noqa: E402,F401
 
-__all__ = ["PETSc", "compliance", "grid_shape", "row_range", "local_rows", "set_local_rows",
+__all__ = ["PETSc", "Solver", "compliance", "grid_shape", "row_range", "local_rows", "set_local_rows",
            "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
 
 
@@ -89,3 +89,106 @@ def gather(vec, obj):
     comm = vec.getComm().tompi4py()
     parts = comm.allgather(vec.getArray().copy())
     return np.concatenate(parts).reshape(Ny, Nx)
+
+
+_solver_count = 0
+
+
+def _option_value(value):
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    if isinstance(value, (tuple, list)):
+        return ",".join(repr(float(v)) if isinstance(v, float) else str(v) for v in value)
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+class Solver:
+    """The adhesive contact solver, configured by the same options as the executable.
+
+    Keyword arguments are the ``-adh_`` options without that prefix, e.g.
+    ``Solver(n=128, size=1.0, E_star=1.0, gamma=2e-3, radius=1.0, path=[0.06, -0.03], steps=45)``;
+    KSP options go the same way (``ksp_rtol=1e-12``). They are stored under a prefix of this
+    solver's own, so two solvers do not see each other's options.
+
+    After ``solve_path()`` (or ``start(d)`` / ``step(d)``), ``curve()`` gives NumPy arrays and
+    ``pressure``, ``displacement``, ``gap``, ``contact_set``, ``compliance`` are petsc4py objects.
+    """
+
+    def __init__(self, comm=None, **options):
+        global _solver_count
+        _solver_count += 1
+        self.prefix = f"adhbem{_solver_count}_"
+        comm = PETSc.COMM_WORLD if comm is None else comm
+        if not isinstance(comm, PETSc.Comm):
+            comm = PETSc.Comm(comm)
+        opts = PETSc.Options()
+        self._keys = []
+        for key, value in options.items():
+            name = f"{self.prefix}adh_{key}"
+            opts[name] = _option_value(value)
+            self._keys.append(name)
+        try:
+            self._s = _adhbem.solver_create(comm, self.prefix)
+        finally:
+            for name in self._keys:
+                opts.delValue(name)
+
+    def start(self, d):
+        """The starting state at indentation d (hertz or adhesive, option start)."""
+        return _adhbem.solver_start(self._s, float(d))
+
+    def step(self, d):
+        """One step to indentation d from the current contact set; returns the state as a dict."""
+        return _adhbem.solver_step(self._s, float(d))
+
+    def state(self):
+        return _adhbem.solver_state(self._s)
+
+    def solve_path(self):
+        """Runs the option path and returns the curve."""
+        _adhbem.solver_solve_path(self._s)
+        return self.curve()
+
+    def curve(self):
+        """dict of NumPy arrays: d, force, area, contact_points, outer_iterations, ksp_iterations,
+        compliance_applications, seconds."""
+        import numpy as np
+        return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
+
+    def write(self, file):
+        """Writes the curve (and, with option fields, the current fields) to file and its CSV."""
+        _adhbem.solver_write(self._s, str(file))
+
+    def view(self):
+        _adhbem.solver_view(self._s)
+
+    def set_gamma_field(self, vec):
+        """Work of adhesion as a field dgamma(x,y): a Vec on the grid (see make_field)."""
+        _adhbem.solver_set_gamma_field(self._s, vec)
+
+    def make_field(self, array=None):
+        """A new Vec on the grid, optionally set from a (rows, Nx) or (Ny, Nx) array."""
+        v = self.pressure.duplicate()
+        v.set(0.0)
+        if array is not None:
+            set_local_rows(v, self.compliance, array)
+        return v
+
+    @property
+    def critical_stress(self):
+        """Sigma of the scalar work of adhesion on this grid."""
+        return _adhbem.solver_critical_stress(self._s)
+
+    def _obj(self, name):
+        return _adhbem.solver_objects(self._s)[name]
+
+    pressure = property(lambda self: self._obj("pressure"), doc="pressure Vec (tension < 0)")
+    displacement = property(lambda self: self._obj("displacement"), doc="surface displacement u = K p")
+    gap = property(lambda self: self._obj("gap"), doc="gap g = h - d + u")
+    profile = property(lambda self: self._obj("profile"), doc="indenter profile h")
+    critical_stress_field = property(lambda self: self._obj("critical_stress"), doc="Sigma(x,y)")
+    compliance = property(lambda self: self._obj("compliance"), doc="the compliance Mat K")
+    contact_set = property(lambda self: self._obj("contact_set"), doc="the contact set IS")
+    spacing = property(lambda self: (self._obj("hx"), self._obj("hy")), doc="(hx, hy)")

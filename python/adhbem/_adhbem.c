@@ -84,7 +84,171 @@ static PyObject *py_critical_stress(PyObject *self, PyObject *args)
   return PyFloat_FromDouble(AdhCriticalStress(hx, hy, Estar, dgamma));
 }
 
+/* ---- the solver, held in a capsule; the Python class in __init__.py wraps it ---- */
+
+static void solver_capsule_destroy(PyObject *cap)
+{
+  AdhSolver s = (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
+  /* After PetscFinalize (interpreter exit) PETSc objects are gone already. */
+  if (s && !PetscFinalizeCalled) (void)AdhSolverDestroy(&s);
+}
+
+static AdhSolver solver_get(PyObject *cap)
+{
+  return (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
+}
+
+static PyObject *py_solver_create(PyObject *self, PyObject *args)
+{
+  PyObject   *pycomm;
+  const char *prefix;
+  AdhSolver   s;
+  PetscErrorCode ierr;
+
+  if (!PyArg_ParseTuple(args, "Os", &pycomm, &prefix)) return NULL;
+  PyPetscCall(AdhSolverCreate(PyPetscComm_Get(pycomm), &s));
+  PyPetscCall(AdhSolverSetOptionsPrefix(s, prefix));
+  ierr = AdhSolverSetFromOptions(s);
+  if (!ierr) ierr = AdhSolverSetUp(s);
+  if (ierr) {
+    (void)AdhSolverDestroy(&s);
+    PyPetscError_Set((int)ierr);
+    return NULL;
+  }
+  return PyCapsule_New(s, "AdhSolver", solver_capsule_destroy);
+}
+
+static PyObject *state_dict(AdhSolver s)
+{
+  PetscReal d, F, A, Sigma;
+  PetscInt  points, outer, ksp, mults;
+  PyPetscCall(AdhSolverGetState(s, &d, &F, &A, &points, &outer, &ksp, &mults));
+  PyPetscCall(AdhSolverGetCriticalStress(s, &Sigma));
+  return Py_BuildValue("{s:d,s:d,s:d,s:n,s:n,s:n,s:n}", "d", (double)d, "force", (double)F, "area", (double)A, "contact_points", (Py_ssize_t)points, "outer_iterations", (Py_ssize_t)outer, "ksp_iterations", (Py_ssize_t)ksp, "compliance_applications", (Py_ssize_t)mults);
+}
+
+static PyObject *py_solver_start(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  double    d;
+  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
+  PyPetscCall(AdhSolverStart(solver_get(cap), d));
+  return state_dict(solver_get(cap));
+}
+
+static PyObject *py_solver_step(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  double    d;
+  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
+  PyPetscCall(AdhSolverStep(solver_get(cap), d));
+  return state_dict(solver_get(cap));
+}
+
+static PyObject *py_solver_state(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  return state_dict(solver_get(cap));
+}
+
+static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverSolvePath(solver_get(cap)));
+  Py_RETURN_NONE;
+}
+
+static PyObject *real_list(PetscInt n, const PetscReal *v)
+{
+  PyObject *l = PyList_New(n);
+  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(l, k, PyFloat_FromDouble((double)v[k]));
+  return l;
+}
+
+static PyObject *int_list(PetscInt n, const PetscInt *v)
+{
+  PyObject *l = PyList_New(n);
+  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(l, k, PyLong_FromLong((long)v[k]));
+  return l;
+}
+
+static PyObject *py_solver_curve(PyObject *self, PyObject *args)
+{
+  PyObject       *cap;
+  const AdhCurve *c;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverGetCurve(solver_get(cap), &c));
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N}", "d", real_list(c->n, c->d), "force", real_list(c->n, c->force), "area", real_list(c->n, c->area), "seconds", real_list(c->n, c->seconds), "contact_points", int_list(c->n, c->contact_points), "outer_iterations", int_list(c->n, c->outer_iterations), "ksp_iterations", int_list(c->n, c->ksp_iterations), "compliance_applications", int_list(c->n, c->compliance_applications));
+}
+
+static PyObject *py_solver_objects(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  AdhSolver s;
+  Vec       p, u, g, h, Sigma;
+  Mat       K;
+  IS        is;
+  AdhGrid   grid;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  s = solver_get(cap);
+  PyPetscCall(AdhSolverGetFields(s, &p, &u, &g, &h, &Sigma));
+  PyPetscCall(AdhSolverGetCompliance(s, &K));
+  PyPetscCall(AdhSolverGetContactSet(s, &is));
+  PyPetscCall(AdhSolverGetGrid(s, &grid));
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", PyPetscVec_New(u), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", PyPetscVec_New(Sigma), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
+}
+
+static PyObject *py_solver_sigma(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  PetscReal Sigma;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverGetCriticalStress(solver_get(cap), &Sigma));
+  return PyFloat_FromDouble((double)Sigma);
+}
+
+static PyObject *py_solver_set_gamma_field(PyObject *self, PyObject *args)
+{
+  PyObject *cap, *pyvec;
+  Vec       v;
+  if (!PyArg_ParseTuple(args, "OO", &cap, &pyvec)) return NULL;
+  v = PyPetscVec_Get(pyvec);
+  if (!v) return NULL;
+  PyPetscCall(AdhSolverSetWorkOfAdhesionField(solver_get(cap), v));
+  Py_RETURN_NONE;
+}
+
+static PyObject *py_solver_write(PyObject *self, PyObject *args)
+{
+  PyObject   *cap;
+  const char *file;
+  if (!PyArg_ParseTuple(args, "Os", &cap, &file)) return NULL;
+  PyPetscCall(AdhSolverWriteOutput(solver_get(cap), file));
+  Py_RETURN_NONE;
+}
+
+static PyObject *py_solver_view(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverView(solver_get(cap), NULL));
+  Py_RETURN_NONE;
+}
+
 static PyMethodDef methods[] = {
+  {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> capsule (options read with the prefix)"},
+  {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state"},
+  {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state"},
+  {"solver_state", py_solver_state, METH_VARARGS, "solver_state(s) -> state"},
+  {"solver_solve_path", py_solver_solve_path, METH_VARARGS, "solver_solve_path(s)"},
+  {"solver_curve", py_solver_curve, METH_VARARGS, "solver_curve(s) -> dict of lists"},
+  {"solver_objects", py_solver_objects, METH_VARARGS, "solver_objects(s) -> dict of petsc4py objects"},
+  {"solver_critical_stress", py_solver_sigma, METH_VARARGS, "solver_critical_stress(s) -> Sigma"},
+  {"solver_set_gamma_field", py_solver_set_gamma_field, METH_VARARGS, "solver_set_gamma_field(s, vec)"},
+  {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
+  {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, mult_count)"},
   {"love_coefficient", py_love, METH_VARARGS, "love_coefficient(x, y, hx, hy, Estar) -> displacement per unit pressure"},

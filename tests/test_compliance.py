@@ -114,6 +114,21 @@ def test_periodic_against_numpy_fft(comm, Nx, Ny, Lx, Ly):
     assert np.max(np.abs(apply(K, np.ones((Ny, Nx))))) < 1e-13
 
 
+@pytest.mark.mpi
+@pytest.mark.ranks3
+def test_tiny_grids(comm):
+    """Grids so small that some ranks get no FFTW rows or no spectral columns (Nx = 1, 2;
+    Ny = number of ranks): both boundaries still match their references exactly."""
+    P = comm.getSize()
+    Lx, Ly, E = 0.7, 1.3, 1.0
+    for Nx, Ny in [(1, P), (2, P), (3, P + 2), (5, P + 1)]:
+        K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "free", comm=comm)
+        assert rel_max(assembled(K), dense_free(Nx, Ny, Lx / Nx, Ly / Ny, E)) < 1e-12, (Nx, Ny)
+        K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "periodic", comm=comm)
+        ref = np.column_stack([periodic_reference(e.reshape(Ny, Nx), Lx, Ly, E).ravel() for e in np.eye(Nx * Ny)])
+        assert np.max(np.abs(assembled(K) - ref)) < 1e-12 * np.max(np.abs(ref)), (Nx, Ny)
+
+
 # ---- symmetry and positivity ---------------------------------------------------------------------
 
 @pytest.mark.mpi

@@ -5,26 +5,48 @@
    no violators, which costs one full multiply u = K p per attach test. */
 #include "solverimpl.h"
 
-/* The IS of the set (global indices of the local points in it) and K restricted to it. */
+/* The IS of the set (global indices of the local points in it), K restricted to it (on the
+   bounding-box window when there is one), and the preconditioner's scatter. */
 PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
 {
-  PetscInt  nlocal, rstart, count = 0, k, *idx;
+  PetscInt nlocal, rstart, count = 0, k, *idx, *opidx;
+  Mat      Kop, Sop;
+  Vec      reduced;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(s->p, &nlocal));
   PetscCall(VecGetOwnershipRange(s->p, &rstart, NULL));
   for (k = 0; k < nlocal; k++) count += s->in_set[k] ? 1 : 0;
   PetscCall(PetscMalloc1(count, &idx));
+  PetscCall(PetscMalloc1(count, &opidx));
   for (k = 0, count = 0; k < nlocal; k++)
     if (s->in_set[k]) idx[count++] = rstart + k;
   PetscCall(ISDestroy(&s->contact));
   PetscCall(ISCreateGeneral(s->comm, count, idx, PETSC_OWN_POINTER, &s->contact));
   PetscCall(PetscObjectSetName((PetscObject)s->contact, "contact_set"));
   PetscCall(ISGetSize(s->contact, &s->npoints));
+
+  PetscCall(AdhSolverSelectOperator_Private(s));
+  PetscCall(AdhSolverOperatorIndices_Private(s, count, idx, opidx));
+  PetscCall(ISDestroy(&s->contact_op));
+  PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_OWN_POINTER, &s->contact_op));
+  Kop = s->box ? s->box->K : s->K;
+  Sop = s->box ? s->box->S : s->S;
+
   PetscCall(MatDestroy(&s->Kcc));
+  PetscCall(VecScatterDestroy(&s->pc_scatter));
+  PetscCall(VecDestroy(&s->pc_in));
+  PetscCall(VecDestroy(&s->pc_out));
   /* KSP keeps work vectors of the old size; let it rebuild them for the new set. */
   if (s->ksp) PetscCall(KSPReset(s->ksp));
-  if (s->npoints) PetscCall(MatCreateSubMatrixVirtual(s->K, s->contact, s->contact, &s->Kcc));
+  if (s->npoints) {
+    PetscCall(MatCreateSubMatrixVirtual(Kop, s->contact_op, s->contact_op, &s->Kcc));
+    PetscCall(MatCreateVecs(Sop, &s->pc_in, &s->pc_out));
+    PetscCall(VecCreateMPI(s->comm, count, s->npoints, &reduced));
+    PetscCall(VecScatterCreate(reduced, NULL, s->pc_in, s->contact_op, &s->pc_scatter));
+    PetscCall(VecDestroy(&reduced));
+    s->Sop = Sop;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -165,7 +187,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal d)
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
-  PetscCall(MatAdhComplianceGetMultCount(s->K, &mults0));
+  PetscCall(AdhSolverMultCount_Private(s, &mults0));
   s->d          = d;
   s->step_outer = 0;
   s->step_ksp   = 0;
@@ -182,7 +204,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal d)
     if (!removed && !added) break;
   }
   s->step_outer = outer;
-  PetscCall(MatAdhComplianceGetMultCount(s->K, &mults1));
+  PetscCall(AdhSolverMultCount_Private(s, &mults1));
   s->step_mults = mults1 - mults0;
   PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -25,6 +25,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->max_outer = 100000;
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;
+  s->use_box   = PETSC_TRUE;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
   s->path[0] = 0.01;
@@ -68,6 +69,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step", "AdhSolver", s->monitor, &s->monitor, NULL));
   PetscCall(PetscOptionsBool("-adh_fields", "Write pressure, displacement, gap and contact mask of every step", "AdhSolver", s->fields, &s->fields, NULL));
@@ -111,23 +113,20 @@ static PetscErrorCode ComputeCriticalStress(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* The Fourier preconditioner: z = R S R^T r, with S the periodic stiffness E*|q|/2 on the whole
-   grid and R the restriction to the contact set. */
+/* The Fourier preconditioner: z = R S R^T r, with S the periodic stiffness E*|q|/2 on the grid
+   (or on the bounding-box window) and R the restriction to the contact set. */
 static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
 {
   AdhSolver s;
-  Vec       full, out;
 
   PetscFunctionBegin;
   PetscCall(PCShellGetContext(pc, &s));
-  PetscCall(DMGetGlobalVector(s->grid->da, &full));
-  PetscCall(DMGetGlobalVector(s->grid->da, &out));
-  PetscCall(VecSet(full, 0.0));
-  PetscCall(VecISCopy(full, s->contact, SCATTER_FORWARD, r));
-  PetscCall(MatMult(s->S, full, out));
-  PetscCall(VecISCopy(out, s->contact, SCATTER_REVERSE, z));
-  PetscCall(DMRestoreGlobalVector(s->grid->da, &full));
-  PetscCall(DMRestoreGlobalVector(s->grid->da, &out));
+  PetscCall(VecSet(s->pc_in, 0.0));
+  PetscCall(VecScatterBegin(s->pc_scatter, r, s->pc_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(s->pc_scatter, r, s->pc_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(MatMult(s->Sop, s->pc_in, s->pc_out));
+  PetscCall(VecScatterBegin(s->pc_scatter, s->pc_out, z, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(s->pc_scatter, s->pc_out, z, INSERT_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 
@@ -256,6 +255,11 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   if (!s) PetscFunctionReturn(0);
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));
+  PetscCall(ISDestroy(&s->contact_op));
+  PetscCall(VecScatterDestroy(&s->pc_scatter));
+  PetscCall(VecDestroy(&s->pc_in));
+  PetscCall(VecDestroy(&s->pc_out));
+  PetscCall(AdhSolverDestroyBoxes_Private(s));
   PetscCall(MatDestroy(&s->K));
   PetscCall(MatDestroy(&s->S));
   PetscCall(ISDestroy(&s->contact));

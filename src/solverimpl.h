@@ -6,6 +6,13 @@
 #include "adhbem.h"
 #include "indenter.h"
 
+/* A window of the plane for the bounding-box convolution (box.c). */
+typedef struct {
+  PetscInt bx, by;
+  AdhGrid  grid;
+  Mat      K, S;   /* free compliance and periodic stiffness on the window */
+} AdhBox;
+
 struct _n_AdhSolver {
   MPI_Comm    comm;
   char       *prefix;
@@ -31,7 +38,16 @@ struct _n_AdhSolver {
   IS        contact;
   PetscInt  npoints;          /* global size of the set */
   KSP       ksp;
-  Mat       Kcc;
+  Mat       Kcc;              /* K restricted to the set, applied on the window or the grid */
+  IS        contact_op;       /* the set in the numbering of the operator behind Kcc */
+  VecScatter pc_scatter;      /* set values -> the preconditioner's grid */
+  Vec       pc_in, pc_out;
+  Mat       Sop;              /* the stiffness behind the preconditioner (borrowed) */
+
+  /* bounding-box convolution */
+  PetscBool use_box;
+  AdhBox   *boxes, *box;      /* cache, and the window in use (NULL: the whole grid) */
+  PetscInt  nboxes, maxboxes, box_i0, box_j0;
 
   /* the current solve, read by the convergence test and the preconditioner */
   const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
@@ -55,6 +71,10 @@ struct _n_AdhSolver {
 };
 
 PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverDestroyBoxes_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverMultCount_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, PetscReal d, PetscReal F, PetscReal A, PetscInt pts, PetscInt outer, PetscInt ksp, PetscInt mults, PetscReal sec);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);

@@ -126,7 +126,8 @@ def test_tiny_grids(comm):
         assert rel_max(assembled(K), dense_free(Nx, Ny, Lx / Nx, Ly / Ny, E)) < 1e-12, (Nx, Ny)
         K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "periodic", comm=comm)
         ref = np.column_stack([periodic_reference(e.reshape(Ny, Nx), Lx, Ly, E).ravel() for e in np.eye(Nx * Ny)])
-        assert np.max(np.abs(assembled(K) - ref)) < 1e-12 * np.max(np.abs(ref)), (Nx, Ny)
+        # (on a 1 x 1 grid only the mean mode exists and K = 0)
+        assert np.max(np.abs(assembled(K) - ref)) <= 1e-12 * max(np.max(np.abs(ref)), 1e-3), (Nx, Ny)
 
 
 # ---- symmetry and positivity ---------------------------------------------------------------------

@@ -5,13 +5,29 @@
    no violators, which costs one full multiply u = K p per attach test. */
 #include "solverimpl.h"
 
+/* K_CC x: spread the set values onto the operator's grid (the window or the whole grid),
+   convolve, and gather them back. The scatter is shared with the preconditioner. */
+static PetscErrorCode MatMult_Restricted(Mat Kcc, Vec x, Vec y)
+{
+  AdhSolver s;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(Kcc, &s));
+  PetscCall(VecSet(s->op_in, 0.0));
+  PetscCall(VecScatterBegin(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(MatMult(s->Kop, s->op_in, s->op_out));
+  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
 /* The IS of the set (global indices of the local points in it), K restricted to it (on the
-   bounding-box window when there is one), and the preconditioner's scatter. */
+   bounding-box window when there is one), and the scatter between the two. */
 PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
 {
   PetscInt nlocal, rstart, count = 0, k, *idx, *opidx;
   Mat      Kop, Sop;
-  Vec      reduced;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(s->p, &nlocal));
@@ -19,8 +35,16 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   for (k = 0; k < nlocal; k++) count += s->in_set[k] ? 1 : 0;
   PetscCall(PetscMalloc1(count, &idx));
   PetscCall(PetscMalloc1(count, &opidx));
+  PetscCall(PetscFree(s->set_local));
+  PetscCall(PetscFree(s->thrC));
+  PetscCall(PetscMalloc1(count + 1, &s->set_local));
+  PetscCall(PetscMalloc1(count + 1, &s->thrC));
   for (k = 0, count = 0; k < nlocal; k++)
-    if (s->in_set[k]) idx[count++] = rstart + k;
+    if (s->in_set[k]) {
+      s->set_local[count] = k;
+      idx[count++]        = rstart + k;
+    }
+  s->nset_local = count;
   PetscCall(ISDestroy(&s->contact));
   PetscCall(ISCreateGeneral(s->comm, count, idx, PETSC_OWN_POINTER, &s->contact));
   PetscCall(PetscObjectSetName((PetscObject)s->contact, "contact_set"));
@@ -32,20 +56,27 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_OWN_POINTER, &s->contact_op));
   Kop = s->box ? s->box->K : s->K;
   Sop = s->box ? s->box->S : s->S;
+  if (Kop != s->Kop) {
+    PetscCall(VecDestroy(&s->op_in));
+    PetscCall(VecDestroy(&s->op_out));
+    PetscCall(MatCreateVecs(Kop, &s->op_in, &s->op_out));
+    s->Kop = Kop;
+    s->Sop = Sop;
+  }
 
   PetscCall(MatDestroy(&s->Kcc));
-  PetscCall(VecScatterDestroy(&s->pc_scatter));
-  PetscCall(VecDestroy(&s->pc_in));
-  PetscCall(VecDestroy(&s->pc_out));
+  PetscCall(VecScatterDestroy(&s->set_scatter));
+  PetscCall(VecDestroy(&s->pC));
+  PetscCall(VecDestroy(&s->bC));
   /* KSP keeps work vectors of the old size; let it rebuild them for the new set. */
   if (s->ksp) PetscCall(KSPReset(s->ksp));
   if (s->npoints) {
-    PetscCall(MatCreateSubMatrixVirtual(Kop, s->contact_op, s->contact_op, &s->Kcc));
-    PetscCall(MatCreateVecs(Sop, &s->pc_in, &s->pc_out));
-    PetscCall(VecCreateMPI(s->comm, count, s->npoints, &reduced));
-    PetscCall(VecScatterCreate(reduced, NULL, s->pc_in, s->contact_op, &s->pc_scatter));
-    PetscCall(VecDestroy(&reduced));
-    s->Sop = Sop;
+    PetscCall(VecCreateMPI(s->comm, count, s->npoints, &s->pC));
+    PetscCall(VecDuplicate(s->pC, &s->bC));
+    PetscCall(VecScatterCreate(s->pC, NULL, s->op_in, s->contact_op, &s->set_scatter));
+    PetscCall(MatCreateShell(s->comm, count, count, s->npoints, s->npoints, s, &s->Kcc));
+    PetscCall(MatShellSetOperation(s->Kcc, MATOP_MULT, (void (*)(void))MatMult_Restricted));
+    PetscCall(MatSetOption(s->Kcc, MAT_SPD, PETSC_TRUE));
   }
   PetscFunctionReturn(0);
 }
@@ -106,31 +137,44 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
 /* p_C from K_CC p_C = (d - h)_C, warm-started from the current p; p = 0 off the set. */
 static PetscErrorCode SolveOnSet(AdhSolver s)
 {
-  Vec                pC, hC, bC, thrC;
   KSPConvergedReason reason;
-  PetscInt           its;
+  PetscInt           its, k;
+  const PetscScalar *pa, *ha, *ta;
+  PetscScalar       *pc, *bc;
+  PetscScalar       *pw;
 
   PetscFunctionBegin;
   s->certified_stop = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
-  PetscCall(VecGetSubVector(s->p, s->contact, &pC));
-  PetscCall(VecGetSubVector(s->h, s->contact, &hC));
-  PetscCall(VecGetSubVector(Threshold(s), s->contact, &thrC));
-  PetscCall(VecDuplicate(hC, &bC));
-  PetscCall(VecAXPBY(bC, -1.0, 0.0, hC));
-  PetscCall(VecShift(bC, s->d));
-  PetscCall(VecNorm(bC, NORM_2, &s->bnorm));
-  PetscCall(VecGetArrayRead(thrC, &s->threshold_local));
+  /* The set's points are local to each rank, so restriction is a local gather. */
+  PetscCall(VecGetArrayRead(s->p, &pa));
+  PetscCall(VecGetArrayRead(s->h, &ha));
+  PetscCall(VecGetArrayRead(Threshold(s), &ta));
+  PetscCall(VecGetArrayWrite(s->pC, &pc));
+  PetscCall(VecGetArrayWrite(s->bC, &bc));
+  for (k = 0; k < s->nset_local; k++) {
+    const PetscInt m = s->set_local[k];
+    pc[k]         = pa[m];
+    bc[k]         = s->d - ha[m];
+    s->thrC[k]    = ta[m];
+  }
+  PetscCall(VecRestoreArrayWrite(s->bC, &bc));
+  PetscCall(VecRestoreArrayWrite(s->pC, &pc));
+  PetscCall(VecRestoreArrayRead(Threshold(s), &ta));
+  PetscCall(VecRestoreArrayRead(s->h, &ha));
+  PetscCall(VecRestoreArrayRead(s->p, &pa));
+  PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
+  s->threshold_local = s->thrC;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
-  PetscCall(KSPSolve(s->ksp, bC, pC));
-  PetscCall(VecRestoreArrayRead(thrC, &s->threshold_local));
+  PetscCall(KSPSolve(s->ksp, s->bC, s->pC));
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;
-  PetscCall(VecDestroy(&bC));
-  PetscCall(VecRestoreSubVector(Threshold(s), s->contact, &thrC));
-  PetscCall(VecRestoreSubVector(s->h, s->contact, &hC));
-  PetscCall(VecRestoreSubVector(s->p, s->contact, &pC));
+  PetscCall(VecGetArray(s->p, &pw));
+  PetscCall(VecGetArrayRead(s->pC, &pa));
+  for (k = 0; k < s->nset_local; k++) pw[s->set_local[k]] = pa[k];
+  PetscCall(VecRestoreArrayRead(s->pC, &pa));
+  PetscCall(VecRestoreArray(s->p, &pw));
   PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The KSP solve on the contact set (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_ksp_rtol, -adh_ksp_max_it, -adh_ksp_monitor)", s->npoints, (double)s->d, KSPConvergedReasons[reason], its);
   PetscFunctionReturn(0);
 }

@@ -121,12 +121,12 @@ static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
 
   PetscFunctionBegin;
   PetscCall(PCShellGetContext(pc, &s));
-  PetscCall(VecSet(s->pc_in, 0.0));
-  PetscCall(VecScatterBegin(s->pc_scatter, r, s->pc_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(s->pc_scatter, r, s->pc_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(MatMult(s->Sop, s->pc_in, s->pc_out));
-  PetscCall(VecScatterBegin(s->pc_scatter, s->pc_out, z, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(s->pc_scatter, s->pc_out, z, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecSet(s->op_in, 0.0));
+  PetscCall(VecScatterBegin(s->set_scatter, r, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(s->set_scatter, r, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(MatMult(s->Sop, s->op_in, s->op_out));
+  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, z, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, z, INSERT_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 
@@ -256,9 +256,13 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));
   PetscCall(ISDestroy(&s->contact_op));
-  PetscCall(VecScatterDestroy(&s->pc_scatter));
-  PetscCall(VecDestroy(&s->pc_in));
-  PetscCall(VecDestroy(&s->pc_out));
+  PetscCall(VecScatterDestroy(&s->set_scatter));
+  PetscCall(VecDestroy(&s->pC));
+  PetscCall(VecDestroy(&s->bC));
+  PetscCall(PetscFree(s->set_local));
+  PetscCall(PetscFree(s->thrC));
+  PetscCall(VecDestroy(&s->op_in));
+  PetscCall(VecDestroy(&s->op_out));
   PetscCall(AdhSolverDestroyBoxes_Private(s));
   PetscCall(MatDestroy(&s->K));
   PetscCall(MatDestroy(&s->S));

@@ -40,9 +40,12 @@ struct _n_AdhSolver {
   KSP       ksp;
   Mat       Kcc;              /* K restricted to the set, applied on the window or the grid */
   IS        contact_op;       /* the set in the numbering of the operator behind Kcc */
-  VecScatter pc_scatter;      /* set values -> the preconditioner's grid */
-  Vec       pc_in, pc_out;
-  Mat       Sop;              /* the stiffness behind the preconditioner (borrowed) */
+  Mat       Kop, Sop;         /* compliance and stiffness of the window or grid in use (borrowed) */
+  Vec       op_in, op_out;    /* work vectors on that window or grid */
+  VecScatter set_scatter;     /* set values -> that window or grid */
+  PetscInt *set_local, nset_local; /* local offsets of this rank's points in the set */
+  Vec       pC, bC;           /* pressure and right-hand side on the set */
+  PetscScalar *thrC;          /* allowed tension on the set */
 
   /* bounding-box convolution */
   PetscBool use_box;

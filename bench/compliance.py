@@ -206,11 +206,13 @@ def main():
                 last[key] = (N, r["wall_s"])
                 results.append(r)
                 print(row(r), flush=True)
-    print(f"total {time.time() - start:.0f} s, load average now {os.getloadavg()[0]:.2f}. ms/MatMult: median wall time of the slowest rank; ms FFT: "
-          f"AdhFFTForward + AdhFFTBackward in one multiply (slowest rank, median); FFT frac = FFT time / AdhComplMult "
-          f"time of the same multiply (median); "
-          f"setup s: building the operator (plans, kernel transform); peak MB: max over ranks of ru_maxrss "
-          f"growth from just before the build; B/point: that growth summed over ranks per physical grid point.")
+    print(f"total {time.time() - start:.0f} s, load average now {os.getloadavg()[0]:.2f}")
+    print("  ms/MatMult: wall time of one multiply on the slowest rank, median over the reps\n"
+          "  ms FFT:     AdhFFTForward + AdhFFTBackward (the bare fftw_execute calls) in one multiply,\n"
+          "              slowest rank, median; FFT frac: that over the AdhComplMult time of the same multiply\n"
+          "  setup s:    building the operator (FFTW plans, kernel transform, diagonal)\n"
+          "  peak MB:    ru_maxrss growth from just before the build, max over ranks (operator, plans, 2 Vecs)\n"
+          "  B/point:    that growth summed over the ranks, per physical grid point")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)

@@ -75,6 +75,10 @@ PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Est
 typedef struct _n_AdhSolver *AdhSolver;
 typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;
 PETSC_EXTERN const char *const AdhStarts[];
+/* When a point off the set joins it: penetration (g < 0, DESIGN.md section 4), or reach
+   (g < Sigma K_00: the gap the element closes under its own critical tension). */
+typedef enum { ADH_ATTACH_PENETRATION, ADH_ATTACH_REACH } AdhAttach;
+PETSC_EXTERN const char *const AdhAttaches[];
 
 /* One recorded state per indentation step. */
 typedef struct {

@@ -193,6 +193,7 @@ static PetscErrorCode Detach(AdhSolver s, PetscInt *removed)
   for (k = 0; k < n; k++)
     if (s->in_set[k] && PetscRealPart(pa[k]) < -PetscRealPart(ta[k])) {
       s->in_set[k] = 0;
+      s->left[k]   = 1;
       pa[k]        = 0.0;
       count++;
     }
@@ -205,8 +206,11 @@ static PetscErrorCode Detach(AdhSolver s, PetscInt *removed)
 /* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0. */
 static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
 {
-  const PetscScalar *ga;
+  const PetscScalar *ga, *ta;
   PetscInt           n, k, count = 0;
+  const PetscBool    reach = s->attach == ADH_ATTACH_REACH && s->adhesive;
+  /* reach: the gap an element closes under its own critical tension, Sigma K_00. */
+  const PetscReal    K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
 
   PetscFunctionBegin;
   PetscCall(MatMult(s->K, s->p, s->u));
@@ -214,11 +218,16 @@ static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
   PetscCall(VecShift(s->g, -s->d));
   PetscCall(VecGetLocalSize(s->g, &n));
   PetscCall(VecGetArrayRead(s->g, &ga));
-  for (k = 0; k < n; k++)
-    if (!s->in_set[k] && PetscRealPart(ga[k]) < 0) {
+  PetscCall(VecGetArrayRead(s->Sigma_field, &ta));
+  for (k = 0; k < n; k++) {
+    const PetscReal limit = reach ? PetscRealPart(ta[k]) * K00 : 0.0;
+    /* Under reach, a point that let go in this step stays off, so the step cannot cycle. */
+    if (!s->in_set[k] && PetscRealPart(ga[k]) < limit && !(reach && s->left[k])) {
       s->in_set[k] = 1;
       count++;
     }
+  }
+  PetscCall(VecRestoreArrayRead(s->Sigma_field, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);
@@ -233,6 +242,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal d)
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
   PetscCall(AdhSolverMultCount_Private(s, &mults0));
   s->d          = d;
+  PetscCall(PetscArrayzero(s->left, s->nlocal));
   s->step_outer = 0;
   s->step_ksp   = 0;
   for (outer = 1;; outer++) {

@@ -2,7 +2,8 @@
    is in contact.c, paths in path.c, output in output.c. */
 #include "solverimpl.h"
 
-const char *const AdhStarts[] = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
+const char *const AdhStarts[]   = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
+const char *const AdhAttaches[] = {"penetration", "reach", "AdhAttach", "ADH_ATTACH_", NULL};
 
 PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
 {
@@ -68,6 +69,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   }
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
+  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: penetration (g < 0) or reach (g < Sigma K_00)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
@@ -160,6 +162,8 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
+    PetscCall(PetscCalloc1(nlocal + 1, &s->left));
+    s->nlocal = nlocal;
     PetscCall(AdhSolverRebuildSet_Private(s));
 
     PetscCall(KSPCreate(s->comm, &s->ksp));
@@ -275,6 +279,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(VecDestroy(&s->zero));
   PetscCall(VecDestroy(&s->gamma_field));
   PetscCall(PetscFree(s->in_set));
+  PetscCall(PetscFree(s->left));
   PetscCall(PetscFree(s->path));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
   PetscCall(AdhGridDestroy(&s->grid));

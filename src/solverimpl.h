@@ -35,6 +35,9 @@ struct _n_AdhSolver {
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
+  char     *left;             /* points that let go during the current step */
+  PetscInt  nlocal;
+  AdhAttach attach;
   IS        contact;
   PetscInt  npoints;          /* global size of the set */
   KSP       ksp;

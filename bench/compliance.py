@@ -168,7 +168,7 @@ def main():
     ap.add_argument("--reps", type=int, default=0, help="timed multiplies (default: about --target seconds, 10..200)")
     ap.add_argument("--target", type=float, default=1.5, help="seconds of timed multiplies per case when --reps is not given")
     ap.add_argument("--budget", type=float, default=300.0, help="skip cases predicted to end past this many seconds")
-    ap.add_argument("--worker-timeout", type=float, default=900.0)
+    ap.add_argument("--worker-timeout", type=float, default=300.0, help="seconds before a worker is given up (a hung collective)")
     ap.add_argument("--json", help="also write the results to this file")
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--n", type=int, help=argparse.SUPPRESS)

@@ -208,6 +208,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   Compliance *c;
   PetscInt    ys, ym, effort = 1, phys_start, first_row;
   PetscReal   timelimit = 0.01;
+  PetscMPIInt size;
   ptrdiff_t   alloc_local, nspec;
   Vec         x, e;
   IS          is;
@@ -218,7 +219,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
-  PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, NULL));
+  PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, NULL));
   PetscOptionsEnd();
 
   PetscCall(PetscNew(&c));
@@ -236,8 +237,11 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   nspec = c->local_n1 * c->n0;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
   /* MEASURE plans run about twice as fast as ESTIMATE ones here, and a short time limit keeps
-     most of that gain while the bounding-box windows make planning frequent. */
-  fftw_set_timelimit(timelimit);
+     most of that gain while the bounding-box windows make planning frequent. Only on one rank:
+     each rank times its own trials, and a limit would let ranks take different planning paths
+     into different collectives (a deadlock). */
+  PetscCallMPI(MPI_Comm_size(grid->comm, &size));
+  fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
   c->forward  = fftw_mpi_plan_dft_r2c_2d(c->n0, c->n1, c->data, (fftw_complex *)c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
   c->backward = fftw_mpi_plan_dft_c2r_2d(c->n0, c->n1, (fftw_complex *)c->data, c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
   PetscCheck(c->forward && c->backward, c->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", c->n0, c->n1);

@@ -35,6 +35,7 @@ struct _n_AdhGrid {
   DM        da;       /* DMDA on Nx x Ny, one process column: each rank owns whole rows */
   PetscBool setup;
   const char *prefix; /* options prefix (borrowed), also used by the compliance */
+  PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
 };
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);

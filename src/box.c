@@ -20,7 +20,8 @@ static PetscInt LadderSize(PetscInt n)
 
 static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box)
 {
-  AdhBox *b;
+  AdhBox     *b;
+  PetscMPIInt size;
 
   PetscFunctionBegin;
   for (PetscInt k = 0; k < s->nboxes; k++)
@@ -39,6 +40,10 @@ static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box
   PetscCall(AdhGridCreate(s->comm, &b->grid));
   b->grid->prefix = s->prefix;
   PetscCall(AdhGridSetSizes(b->grid, bx, by, bx * s->grid->hx, by * s->grid->hy));
+  /* On several ranks FFTW's measuring planner cannot be time-limited (see compliance.c), and
+     unlimited measuring of every window costs more than it saves. */
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  if (size > 1) b->grid->fftw_effort = 0;
   PetscCall(AdhGridSetUp(b->grid));
   PetscCall(MatCreateAdhCompliance(b->grid, s->Estar, ADH_BOUNDARY_FREE, &b->K));
   PetscCall(MatCreateAdhPeriodicStiffness(b->grid, s->Estar, &b->S));

@@ -221,6 +221,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
   PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, NULL));
   PetscOptionsEnd();
+  if (grid->fftw_effort >= 0) effort = grid->fftw_effort;
 
   PetscCall(PetscNew(&c));
   c->comm     = grid->comm;

@@ -11,6 +11,7 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   g->comm = comm;
   g->Nx = g->Ny = 64;
   g->Lx = g->Ly = 1.0;
+  g->fftw_effort = -1;
   *grid = g;
   PetscFunctionReturn(0);
 }

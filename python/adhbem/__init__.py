@@ -131,9 +131,23 @@ class Solver:
             self._keys.append(name)
         try:
             self._s = _adhbem.solver_create(comm, self.prefix)
-        finally:
+        except BaseException:
+            self._forget_options()
+            raise
+
+    def _forget_options(self):
+        # The options stay while the solver lives: operators made later (bounding-box windows)
+        # read the -adh_fftw_* ones.
+        try:
+            opts = PETSc.Options()
             for name in self._keys:
                 opts.delValue(name)
+        except Exception:  # PETSc already finalised at interpreter exit
+            pass
+        self._keys = []
+
+    def __del__(self):
+        self._forget_options()
 
     def start(self, d):
         """The starting state at indentation d (hertz or adhesive, option start)."""

@@ -5,20 +5,28 @@
    no violators, which costs one full multiply u = K p per attach test. */
 #include "solverimpl.h"
 
-/* K_CC x: spread the set values onto the operator's grid (the window or the whole grid),
-   convolve, and gather them back. The scatter is shared with the preconditioner. */
+/* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
+   set values onto it, apply A, gather them back. K_CC uses the compliance, the preconditioner
+   the stiffness; they share the scatter. */
+PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver s, Mat A, Vec x, Vec y)
+{
+  PetscFunctionBegin;
+  PetscCall(VecSet(s->op_in, 0.0));
+  PetscCall(VecScatterBegin(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(MatMult(A, s->op_in, s->op_out));
+  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode MatMult_Restricted(Mat Kcc, Vec x, Vec y)
 {
   AdhSolver s;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(Kcc, &s));
-  PetscCall(VecSet(s->op_in, 0.0));
-  PetscCall(VecScatterBegin(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(MatMult(s->Kop, s->op_in, s->op_out));
-  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(AdhSolverApplyOnSet_Private(s, s->Kop, x, y));
   PetscFunctionReturn(0);
 }
 

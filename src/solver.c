@@ -124,12 +124,7 @@ static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
 
   PetscFunctionBegin;
   PetscCall(PCShellGetContext(pc, &s));
-  PetscCall(VecSet(s->op_in, 0.0));
-  PetscCall(VecScatterBegin(s->set_scatter, r, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(s->set_scatter, r, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(MatMult(s->Sop, s->op_in, s->op_out));
-  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, z, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, z, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(AdhSolverApplyOnSet_Private(s, s->Sop, r, z));
   PetscFunctionReturn(0);
 }
 

@@ -77,6 +77,7 @@ struct _n_AdhSolver {
 };
 
 PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver, Mat, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyBoxes_Private(AdhSolver);

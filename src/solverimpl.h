@@ -65,7 +65,6 @@ struct _n_AdhSolver {
   PetscBool adhesive;         /* false while computing a Hertz (dgamma = 0) start */
   PetscInt  max_outer;
   PetscInt  step_outer, step_ksp, step_mults;
-  PetscInt  total_pc_mults;
 
   /* path and output */
   PetscReal *path;

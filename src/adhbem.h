@@ -36,6 +36,7 @@ struct _n_AdhGrid {
   PetscBool setup;
   const char *prefix; /* options prefix (borrowed), also used by the compliance */
   PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
+  PetscReal fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
 };
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);

@@ -44,6 +44,7 @@ static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box
      unlimited measuring of every window costs more than it saves. */
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   if (size > 1) b->grid->fftw_effort = 0;
+  else b->grid->fftw_timelimit = s->grid->fftw_timelimit;
   PetscCall(AdhGridSetUp(b->grid));
   PetscCall(MatCreateAdhCompliance(b->grid, s->Estar, ADH_BOUNDARY_FREE, &b->K));
   PetscCall(MatCreateAdhPeriodicStiffness(b->grid, s->Estar, &b->S));

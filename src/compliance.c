@@ -207,7 +207,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   Compliance *c;
   PetscInt    ys, ym, effort = 1, phys_start, first_row;
-  PetscReal   timelimit = 0.01;
+  PetscReal   timelimit = -1.0;
+  PetscBool   tlset;
   PetscMPIInt size;
   ptrdiff_t   alloc_local, nspec;
   Vec         x, e;
@@ -219,9 +220,10 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
-  PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, NULL));
+  PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
   PetscOptionsEnd();
   if (grid->fftw_effort >= 0) effort = grid->fftw_effort;
+  if (!tlset && grid->fftw_timelimit >= -1.0) timelimit = grid->fftw_timelimit;
 
   PetscCall(PetscNew(&c));
   c->comm     = grid->comm;
@@ -237,8 +239,9 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCheck(c->data, c->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values", alloc_local);
   nspec = c->local_n1 * c->n0;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
-  /* MEASURE plans run about twice as fast as ESTIMATE ones here, and a short time limit keeps
-     most of that gain while the bounding-box windows make planning frequent. Only on one rank:
+  /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
+     which plans many windows and uses the whole-grid operator rarely, asks for a short limit
+     through the grid (solver.c, box.c). An explicit -adh_fftw_timelimit wins. Only on one rank:
      each rank times its own trials, and a limit would let ranks take different planning paths
      into different collectives (a deadlock). */
   PetscCallMPI(MPI_Comm_size(grid->comm, &size));

@@ -12,6 +12,7 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   g->Nx = g->Ny = 64;
   g->Lx = g->Ly = 1.0;
   g->fftw_effort = -1;
+  g->fftw_timelimit = -2.0;
   *grid = g;
   PetscFunctionReturn(0);
 }

@@ -32,6 +32,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->path[0] = 0.01;
   s->path[1] = 0.0;
   PetscCall(AdhGridCreate(comm, &s->grid));
+  s->grid->fftw_timelimit = 0.01; /* many windows to plan, few whole-grid multiplies */
   *solver = s;
   PetscFunctionReturn(0);
 }

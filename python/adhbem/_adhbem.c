@@ -34,8 +34,11 @@ static PyObject *py_compliance(PyObject *self, PyObject *args)
   }
   PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
   PyPetscCall(AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly));
-  PyPetscCall(MatCreateAdhCompliance(grid, Estar, boundary, &K));
-  PyPetscCall(AdhGridDestroy(&grid));
+  {
+    PetscErrorCode ierr = MatCreateAdhCompliance(grid, Estar, boundary, &K);
+    PyPetscCall(AdhGridDestroy(&grid)); /* also on error: no grid leaks on bad input */
+    PyPetscCall(ierr);
+  }
   result = PyPetscMat_New(K);
   PyPetscCall(MatDestroy(&K));
   return result;

@@ -156,7 +156,7 @@ PetscErrorCode AdhIndenterFill(AdhGrid grid, const AdhIndenter *ind, Vec h)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], AdhGrid grid, AdhIndenter *ind)
+PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], AdhIndenter *ind)
 {
   PetscFunctionBegin;
   PetscOptionsBegin(comm, prefix, "adhbem indenter", "AdhSolver");
@@ -170,6 +170,5 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive, got %g", (double)ind->radius);
   PetscCheck(ind->type != ADH_INDENTER_PUNCH || ind->punch_radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive, got %g", (double)ind->punch_radius);
   PetscCheck(ind->type != ADH_INDENTER_CONE || ind->cone_slope > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive, got %g", (double)ind->cone_slope);
-  (void)grid;
   PetscFunctionReturn(0);
 }

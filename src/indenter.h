@@ -15,6 +15,6 @@ typedef struct {
   char            dataset[256];
 } AdhIndenter;
 
-PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhGrid, AdhIndenter *);
+PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhIndenter *);
 PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, const AdhIndenter *, Vec h);
 #endif

@@ -64,6 +64,13 @@ PETSC_EXTERN const char *const AdhBoundaries[];
 PETSC_EXTERN PetscErrorCode MatCreateAdhCompliance(AdhGrid, PetscReal Estar, AdhBoundary, Mat *);
 /* Lower bound on the smallest eigenvalue of K and of every principal submatrix K_CC. */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
+/* Lower bound on the smallest eigenvalue of K_CC for any set C of m grid points (periodic: it
+   shrinks to zero as C fills the cell, where K_CC becomes singular). */
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat, PetscInt m, PetscReal *);
+/* K + c0 (1 1^T)/N: a periodic compliance whose mean mode has the compliance c0 (> 0), which makes
+   every K_CC positive definite, the whole cell included; its eigenvalues are K's on mean-free
+   vectors and c0. */
+PETSC_EXTERN PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *);
 /* Number of multiplies (FFT pairs) applied so far. */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
 
@@ -82,25 +89,58 @@ PETSC_EXTERN const char *const AdhStarts[];
 typedef enum { ADH_ATTACH_PENETRATION, ADH_ATTACH_REACH } AdhAttach;
 PETSC_EXTERN const char *const AdhAttaches[];
 
-/* One recorded state per indentation step. */
+/* One recorded state: the step's result, its statistics and its cost. */
 typedef struct {
-  PetscInt   n, cap;
-  PetscReal *d, *force, *area, *seconds;
-  PetscInt  *contact_points, *outer_iterations, *ksp_iterations, *compliance_applications;
+  PetscReal d, force, area, seconds;
+  PetscInt  contact_points, outer_iterations, ksp_iterations, compliance_applications;
+  PetscInt  patches;                 /* connected clusters of the contact set (4-neighbours; wrapping on a periodic cell) */
+  PetscReal mean_gap;                /* mean of the gap g over the whole grid */
+  PetscReal max_tension_ratio;       /* largest tension on the set over the critical stress, max(-p/Sigma) (0 without adhesion) */
+  PetscReal area_tension, area_compression; /* area of the set carrying p < 0, and p > 0 */
+  PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
+} AdhState;
+
+/* The recorded states of a path, and the columns of the curve (name, place in AdhState, whether
+   it is a count), in the order of the CSV file. */
+typedef struct {
+  PetscInt  n, cap;
+  AdhState *state;
 } AdhCurve;
+typedef struct {
+  const char *name;
+  size_t      offset;
+  PetscBool   integer;
+} AdhCurveColumn;
+PETSC_EXTERN const AdhCurveColumn AdhCurveColumns[];
+PETSC_EXTERN const PetscInt       AdhCurveNumColumns;
+PETSC_EXTERN PetscReal            AdhCurveValue(const AdhCurve *, PetscInt k, PetscInt column);
 
 PETSC_EXTERN PetscErrorCode AdhSolverCreate(MPI_Comm, AdhSolver *);
 PETSC_EXTERN PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver, const char[]);
 PETSC_EXTERN PetscErrorCode AdhSolverSetFromOptions(AdhSolver);
 PETSC_EXTERN PetscErrorCode AdhSolverSetUp(AdhSolver);
+
+/* Load control, a registered type: "displacement" (the path holds indentations d) or "force"
+   (the path holds forces F; each step finds the d at which the equilibrium set carries F). */
+typedef const char *AdhControlType;
+#define ADHCONTROLDISPLACEMENT "displacement"
+#define ADHCONTROLFORCE        "force"
+PETSC_EXTERN PetscErrorCode AdhControlRegister(const char[], PetscErrorCode (*)(AdhSolver));
+PETSC_EXTERN PetscErrorCode AdhSolverSetControlType(AdhSolver, AdhControlType);
+PETSC_EXTERN PetscErrorCode AdhSolverGetControlType(AdhSolver, AdhControlType *);
 /* Replaces the scalar work of adhesion by a field dgamma(x,y) (a Vec on the grid). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver, Vec);
-/* Starting state at indentation d (DESIGN.md section 4): hertz or adhesive (loaded from first touch). */
-PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal d);
-/* One step of the path: the contact set at indentation d, from the current set. */
-PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal d);
+/* Starting state at the path's first value (an indentation d, or a force under force control):
+   hertz or adhesive (loaded from first touch). */
+PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);
+/* One step of the path: the equilibrium contact set at indentation d (or carrying force F under
+   force control), from the current set. Under force control a set that empties means no
+   equilibrium carries F: the contact has come off (AdhSolverGetState gives 0 points). */
+PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal target);
 /* The whole -adh_path, recording every state in the curve. */
 PETSC_EXTERN PetscErrorCode AdhSolverSolvePath(AdhSolver);
+/* Whether the last step ended in pull-off (the next step starts with the bodies apart). */
+PETSC_EXTERN PetscErrorCode AdhSolverIsPulledOff(AdhSolver, PetscBool *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);
 PETSC_EXTERN PetscErrorCode AdhSolverGetGrid(AdhSolver, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCompliance(AdhSolver, Mat *);
@@ -112,6 +152,8 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetCriticalStress(AdhSolver, PetscReal *);
 /* The current state: indentation, force, area, points in contact, and the last step's counts
    (set updates, KSP iterations, compliance applications). */
 PETSC_EXTERN PetscErrorCode AdhSolverGetState(AdhSolver, PetscReal *d, PetscReal *F, PetscReal *A, PetscInt *points, PetscInt *outer, PetscInt *ksp, PetscInt *mults);
+/* The current state with its statistics (patches, mean gap, tension, areas), as recorded. */
+PETSC_EXTERN PetscErrorCode AdhSolverComputeState(AdhSolver, AdhState *);
 PETSC_EXTERN PetscErrorCode AdhSolverView(AdhSolver, PetscViewer);
 /* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
    every step too). Files appear whole or not at all. */

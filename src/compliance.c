@@ -34,6 +34,7 @@ typedef struct {
   Vec         xfft;                                   /* physical values in FFTW's row distribution */
   VecScatter  toFFT;
   PetscReal   lambda_min, diagonal;
+  PetscReal   lambda_meanfree;                        /* smallest eigenvalue on mean-free vectors */
   PetscInt    nmult;
 } Compliance;
 
@@ -103,7 +104,7 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
     if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; FFTW-MPI r2c transform %td x %td (transposed spectrum)\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->n1, c->n0));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g, multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, c->nmult));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g (mean-free vectors: %g), multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, (double)c->lambda_meanfree, c->nmult));
   }
   PetscFunctionReturn(0);
 }
@@ -149,7 +150,8 @@ static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
   /* K is a principal submatrix of this symmetric circulant, and so is every K_CC: by Cauchy
      interlacing the smallest circulant eigenvalue bounds theirs from below. */
-  c->lambda_min = PetscMax(lmin, 0.0);
+  c->lambda_min      = PetscMax(lmin, 0.0);
+  c->lambda_meanfree = c->lambda_min;
   PetscFunctionReturn(0);
 }
 
@@ -157,7 +159,7 @@ static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
 static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
 {
   ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1);
+  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), lmin = PETSC_MAX_REAL;
 
   PetscFunctionBegin;
   for (a = 0; a < c->local_n1; a++) {
@@ -167,10 +169,14 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
       c->multiplier[a * c->n0 + k0] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
+      if (kx || ky) lmin = PetscMin(lmin, 2.0 / (c->Estar * q));
     }
   }
-  /* The constant vector is in K's null space, so no positive bound holds for K itself. */
-  c->lambda_min = 0.0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
+  /* The constant vector is in K's null space, so no positive bound holds for K itself; on
+     mean-free vectors the smallest eigenvalue is the symbol at the largest wave number. */
+  c->lambda_min      = 0.0;
+  c->lambda_meanfree = lmin;
   PetscFunctionReturn(0);
 }
 
@@ -321,6 +327,77 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   *lambda_min = c->lambda_min;
+  PetscFunctionReturn(0);
+}
+
+/* A lower bound on the smallest eigenvalue of K_CC for any set C of m of the N grid points.
+   free: lambda_min (Cauchy interlacing). periodic: a vector v that vanishes off C has a mean
+   component of norm |sum v| / sqrt(N) <= sqrt(m/N) |v|, and K is at least lambda_meanfree on the
+   rest, so v^T K v >= lambda_meanfree (1 - m/N) |v|^2; zero for the whole grid (K is singular). */
+PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lambda_min)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
+  else *lambda_min = c->lambda_min;
+  PetscFunctionReturn(0);
+}
+
+/* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
+   force control the mean pressure is given, so the mean displacement can be carried by any c0 and
+   subtracted afterwards; with it every K_CC, the whole cell included, is positive definite. */
+typedef struct {
+  Mat       K;
+  PetscReal c0, N;
+} MeanCompliance;
+
+static PetscErrorCode MatMult_MeanCompliance(Mat A, Vec x, Vec y)
+{
+  MeanCompliance *m;
+  PetscScalar     sum;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &m));
+  PetscCall(VecSum(x, &sum));
+  PetscCall(MatMult(m->K, x, y));
+  PetscCall(VecShift(y, m->c0 * sum / m->N));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
+{
+  MeanCompliance *m;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &m));
+  PetscCall(MatDestroy(&m->K));
+  PetscCall(PetscFree(m));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
+{
+  MeanCompliance *m;
+  PetscInt        nloc, N;
+  DM              dm;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&m));
+  PetscCall(PetscObjectReference((PetscObject)K));
+  m->K  = K;
+  m->c0 = c0;
+  PetscCall(MatGetLocalSize(K, &nloc, NULL));
+  PetscCall(MatGetSize(K, &N, NULL));
+  m->N = (PetscReal)N;
+  PetscCall(MatCreateShell(PetscObjectComm((PetscObject)K), nloc, nloc, N, N, m, A));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_MeanCompliance));
+  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_MeanCompliance));
+  PetscCall(MatGetDM(K, &dm));
+  PetscCall(MatSetDM(*A, dm));
+  PetscCall(MatSetOption(*A, MAT_SPD, PETSC_TRUE));
+  PetscCall(MatSetUp(*A));
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,7 @@
-/* One indentation step of the Pohrt-Popov algorithm (DESIGN.md section 4):
-     solve K_CC p_C = (d - h)_C with CG, detach every point with p < -Sigma, and once none is
-     left attach every point off the set that penetrates (g < 0); repeat until C is stable.
-   Detaching all violators at once is the paper's rule. Attach is tested only after a solve with
-   no violators, which costs one full multiply u = K p per attach test. */
+/* The pieces of one step of the Pohrt-Popov algorithm (DESIGN.md section 4), shared by the load
+   controls (control.c): the solve on the contact set, detach (every point with p < -Sigma at once,
+   the paper's rule) and attach (points off the set that penetrate, tested after a solve with no
+   violators; one full multiply u = K p per attach test). */
 #include "solverimpl.h"
 
 /* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
@@ -62,7 +61,7 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscCall(AdhSolverOperatorIndices_Private(s, count, idx, opidx));
   PetscCall(ISDestroy(&s->contact_op));
   PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_OWN_POINTER, &s->contact_op));
-  Kop = s->box ? s->box->K : s->K;
+  Kop = s->box ? s->box->K : s->Kmean ? s->Kmean : s->K;
   Sop = s->box ? s->box->S : s->S;
   if (Kop != s->Kop) {
     PetscCall(VecDestroy(&s->op_in));
@@ -71,6 +70,12 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
     s->Kop = Kop;
     s->Sop = Sop;
   }
+
+  /* A lower bound on the eigenvalues of K_CC for the certified stop (zero: no certification). */
+  if (Kop == s->Kmean) {
+    PetscCall(MatAdhComplianceGetSetLambdaMin(s->K, 0, &s->lambda_set));
+    s->lambda_set = PetscMin(s->lambda_set, s->c0);
+  } else PetscCall(MatAdhComplianceGetSetLambdaMin(s->K, s->npoints, &s->lambda_set));
 
   PetscCall(MatDestroy(&s->Kcc));
   PetscCall(VecScatterDestroy(&s->set_scatter));
@@ -90,7 +95,7 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
 }
 
 /* The allowed tension: Sigma while adhesive, zero while computing a Hertz start. */
-static Vec Threshold(AdhSolver s)
+Vec AdhSolverThreshold_Private(AdhSolver s)
 {
   return s->adhesive ? s->Sigma_field : s->zero;
 }
@@ -118,11 +123,11 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
     *reason = KSP_CONVERGED_RTOL;
     PetscFunctionReturn(0);
   }
-  if (s->certify && it > 0) {
+  if (s->certify_solve && it > 0) {
     Vec                x;
     const PetscScalar *xa;
     PetscInt           n, k;
-    PetscReal          bound = 2.0 * rnorm / s->lambda_min, v[2] = {-PETSC_MAX_REAL, 0.0};
+    PetscReal          bound = 2.0 * rnorm / s->lambda_set, v[2] = {-PETSC_MAX_REAL, 0.0};
 
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
     PetscCall(VecGetLocalSize(x, &n));
@@ -142,77 +147,83 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
   PetscFunctionReturn(0);
 }
 
-/* p_C from K_CC p_C = (d - h)_C, warm-started from the current p; p = 0 off the set. */
-static PetscErrorCode SolveOnSet(AdhSolver s)
+/* x_C from K_CC x_C = (shift - prof)_C (prof NULL: zero), warm-started from x, which is left as it
+   is off the set. With certify, the solve may stop as soon as the points to detach are certain
+   (x must then be the pressure). */
+PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, Vec prof, PetscBool certify)
 {
   KSPConvergedReason reason;
   PetscInt           its, k;
-  const PetscScalar *pa, *ha, *ta;
-  PetscScalar       *pc, *bc;
-  PetscScalar       *pw;
+  const PetscScalar *xa, *ha = NULL, *ta;
+  PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
   s->certified_stop = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
+  PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && s->lambda_set <= 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The whole periodic cell is in contact at d = %g: under displacement control the force is undetermined there (d must stay below the mean of the indenter profile, %g); use -adh_control force", (double)s->d, (double)s->mean_h);
   /* The set's points are local to each rank, so restriction is a local gather. */
-  PetscCall(VecGetArrayRead(s->p, &pa));
-  PetscCall(VecGetArrayRead(s->h, &ha));
-  PetscCall(VecGetArrayRead(Threshold(s), &ta));
-  PetscCall(VecGetArrayWrite(s->pC, &pc));
+  PetscCall(VecGetArrayRead(x, &xa));
+  if (prof) PetscCall(VecGetArrayRead(prof, &ha));
+  PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
+  PetscCall(VecGetArrayWrite(s->pC, &xc));
   PetscCall(VecGetArrayWrite(s->bC, &bc));
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
-    pc[k]         = pa[m];
-    bc[k]         = s->d - ha[m];
+    xc[k]         = xa[m];
+    bc[k]         = shift - (ha ? ha[m] : 0.0);
     s->thrC[k]    = ta[m];
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
-  PetscCall(VecRestoreArrayWrite(s->pC, &pc));
-  PetscCall(VecRestoreArrayRead(Threshold(s), &ta));
-  PetscCall(VecRestoreArrayRead(s->h, &ha));
-  PetscCall(VecRestoreArrayRead(s->p, &pa));
+  PetscCall(VecRestoreArrayWrite(s->pC, &xc));
+  PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
+  PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
   s->threshold_local = s->thrC;
+  s->certify_solve   = (PetscBool)(certify && s->certify && s->lambda_set > 0);
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
   PetscCall(KSPSolve(s->ksp, s->bC, s->pC));
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;
-  PetscCall(VecGetArray(s->p, &pw));
-  PetscCall(VecGetArrayRead(s->pC, &pa));
-  for (k = 0; k < s->nset_local; k++) pw[s->set_local[k]] = pa[k];
-  PetscCall(VecRestoreArrayRead(s->pC, &pa));
-  PetscCall(VecRestoreArray(s->p, &pw));
+  PetscCall(VecGetArray(x, &xw));
+  PetscCall(VecGetArrayRead(s->pC, &xa));
+  for (k = 0; k < s->nset_local; k++) xw[s->set_local[k]] = xa[k];
+  PetscCall(VecRestoreArrayRead(s->pC, &xa));
+  PetscCall(VecRestoreArray(x, &xw));
   PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The KSP solve on the contact set (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_ksp_rtol, -adh_ksp_max_it, -adh_ksp_monitor)", s->npoints, (double)s->d, KSPConvergedReasons[reason], its);
   PetscFunctionReturn(0);
 }
 
 /* Remove every point of the set whose tension exceeds its critical stress, p < -Sigma. */
-static PetscErrorCode Detach(AdhSolver s, PetscInt *removed)
+PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 {
-  PetscScalar       *pa;
+  PetscScalar       *pa, *xa = NULL;
   const PetscScalar *ta;
   PetscInt           n, k, count = 0;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(s->p, &n));
   PetscCall(VecGetArray(s->p, &pa));
-  PetscCall(VecGetArrayRead(Threshold(s), &ta));
+  if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
+  PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
   for (k = 0; k < n; k++)
     if (s->in_set[k] && PetscRealPart(pa[k]) < -PetscRealPart(ta[k])) {
       s->in_set[k] = 0;
       s->left[k]   = 1;
       pa[k]        = 0.0;
+      if (xa) xa[k] = 0.0;
       count++;
     }
-  PetscCall(VecRestoreArrayRead(Threshold(s), &ta));
+  PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (s->xunit) PetscCall(VecRestoreArray(s->xunit, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);
 }
 
 /* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0. */
-static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
+PetscErrorCode AdhSolverAttach_Private(AdhSolver s, PetscInt *added)
 {
   const PetscScalar *ga, *ta;
   PetscInt           n, k, count = 0;
@@ -221,9 +232,7 @@ static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
   const PetscReal    K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
 
   PetscFunctionBegin;
-  PetscCall(MatMult(s->K, s->p, s->u));
-  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
-  PetscCall(VecShift(s->g, -s->d));
+  PetscCall(AdhSolverComputeGap_Private(s));
   PetscCall(VecGetLocalSize(s->g, &n));
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(VecGetArrayRead(s->Sigma_field, &ta));
@@ -241,33 +250,55 @@ static PetscErrorCode Attach(AdhSolver s, PetscInt *added)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal d)
+/* u = K p and g = h - d + u for the current state. */
+PetscErrorCode AdhSolverComputeGap_Private(AdhSolver s)
 {
-  PetscInt outer, removed, added, mults0, mults1;
+  PetscFunctionBegin;
+  PetscCall(MatMult(s->K, s->p, s->u));
+  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
+  PetscCall(VecShift(s->g, -s->d));
+  PetscFunctionReturn(0);
+}
+
+/* Progress inside a long step, with -adh_monitor: at most every few seconds. */
+PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver s, PetscInt outer)
+{
+  PetscLogDouble now;
 
   PetscFunctionBegin;
-  PetscCall(AdhSolverSetUp(s));
-  PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
-  PetscCall(AdhSolverMultCount_Private(s, &mults0));
-  s->d          = d;
-  PetscCall(PetscArrayzero(s->left, s->nlocal));
-  s->step_outer = 0;
-  s->step_ksp   = 0;
+  if (!s->monitor) PetscFunctionReturn(0);
+  PetscCall(PetscTime(&now));
+  if (outer == 1) s->progress_time = now;
+  else if (now - s->progress_time >= s->monitor_interval) {
+    s->progress_time = now;
+    PetscCall(PetscPrintf(s->comm, "      ... d = %.6e: %" PetscInt_FMT " set updates, %" PetscInt_FMT " points in the set, %" PetscInt_FMT " KSP iterations so far\n", (double)s->d, outer - 1, s->npoints, s->step_ksp));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Displacement control: the equilibrium set at indentation d, from the current set. */
+PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
+{
+  PetscInt        outer, removed, added;
+  const PetscBool had_contact = s->npoints > 0;
+
+  PetscFunctionBegin;
+  PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && d >= s->mean_h), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (the gap's mean is max(0, mean(h) - d), and mean(h) = %g): under displacement control the force is undetermined there; use -adh_control force", (double)d, (double)s->mean_h);
+  s->d = d;
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
-    PetscCall(SolveOnSet(s));
+    PetscCall(AdhSolverMonitorProgress_Private(s, outer));
+    PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
-    PetscCall(Detach(s, &removed));
+    PetscCall(AdhSolverDetach_Private(s, &removed));
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
-    if (!removed) PetscCall(Attach(s, &added));
+    if (!removed) PetscCall(AdhSolverAttach_Private(s, &added));
     if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     if (!removed && !added) break;
   }
   s->step_outer = outer;
-  PetscCall(AdhSolverMultCount_Private(s, &mults1));
-  s->step_mults = mults1 - mults0;
-  PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
+  s->pulled_off = (PetscBool)(had_contact && !s->npoints);
   PetscFunctionReturn(0);
 }

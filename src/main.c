@@ -30,19 +30,19 @@ int main(int argc, char **argv)
   if (view) PetscCall(AdhSolverView(solver, NULL));
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
-  for (PetscInt k = 0; k < curve->n; k++)
-    if (curve->force[k] < Fmin) {
-      Fmin = curve->force[k];
-      dmin = curve->d[k];
-    }
   {
     PetscInt ksp = 0, mults = 0, outer = 0;
     for (PetscInt k = 0; k < curve->n; k++) {
-      ksp += curve->ksp_iterations[k];
-      mults += curve->compliance_applications[k];
-      outer += curve->outer_iterations[k];
+      const AdhState *st = &curve->state[k];
+      if (st->force < Fmin) {
+        Fmin = st->force;
+        dmin = st->d;
+      }
+      ksp += st->ksp_iterations;
+      mults += st->compliance_applications;
+      outer += st->outer_iterations;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications\n", curve->n, (double)-Fmin, (double)dmin, outer, ksp, mults));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications\n", curve->n, (double)-Fmin, (double)dmin, outer, ksp, mults));
   }
   PetscCall(AdhSolverDestroy(&solver));
   PetscCall(PetscFinalize());

@@ -112,19 +112,6 @@ static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char
   PetscFunctionReturn(0);
 }
 
-/* Counts as a 1-D dataset too (stored as float64: PETSc's IS viewer adds a block dimension). */
-static PetscErrorCode WriteIntArray(AdhSolver s, PetscViewer viewer, const char name[], PetscInt n, const PetscInt *values)
-{
-  PetscReal *r;
-
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc1(n + 1, &r));
-  for (PetscInt k = 0; k < n; k++) r[k] = (PetscReal)values[k];
-  PetscCall(WriteRealArray(s, viewer, name, n, r));
-  PetscCall(PetscFree(r));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
 {
   const AdhGrid g = s->grid;
@@ -134,7 +121,10 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscInt      maxits;
   KSPType       ksptype;
 
+  PetscReal     pull_off = 0.0; /* the largest tension carried, -min F (0: none) */
+
   PetscFunctionBegin;
+  for (PetscInt k = 0; k < s->curve.n; k++) pull_off = PetscMax(pull_off, -s->curve.state[k].force);
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   nranks = size;
   PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
@@ -154,6 +144,8 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "boundary", PETSC_STRING, AdhBoundaries[s->boundary]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "start", PETSC_STRING, AdhStarts[s->start]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "control", PETSC_STRING, s->control_type));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));
@@ -179,9 +171,17 @@ static PetscErrorCode WriteCSV(AdhSolver s, const char csv[])
   if (!rank) {
     FILE *fp = fopen(part, "w");
     if (fp) {
-      fprintf(fp, "step,d,force,area,contact_points,outer_iterations,ksp_iterations,seconds\n");
-      for (PetscInt k = 0; k < c->n; k++)
-        fprintf(fp, "%" PetscInt_FMT ",%.17g,%.17g,%.17g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.6f\n", k, (double)c->d[k], (double)c->force[k], (double)c->area[k], c->contact_points[k], c->outer_iterations[k], c->ksp_iterations[k], (double)c->seconds[k]);
+      fprintf(fp, "step");
+      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
+      fprintf(fp, "\n");
+      for (PetscInt k = 0; k < c->n; k++) {
+        fprintf(fp, "%" PetscInt_FMT, k);
+        for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+          if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhCurveValue(c, k, j));
+          else fprintf(fp, ",%.17g", (double)AdhCurveValue(c, k, j));
+        }
+        fprintf(fp, "\n");
+      }
       ok = !ferror(fp);
       ok = (fclose(fp) == 0) && ok;
       ok = ok && rename(part, csv) == 0;
@@ -198,18 +198,18 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8];
   PetscMPIInt     rank;
   int             ok = 1;
+  PetscReal      *column;
 
   PetscFunctionBegin;
   PetscCall(WriteAttributes(s, *viewer));
   PetscCall(PetscViewerHDF5PushGroup(*viewer, "/curve"));
-  PetscCall(WriteRealArray(s, *viewer, "d", c->n, c->d));
-  PetscCall(WriteRealArray(s, *viewer, "force", c->n, c->force));
-  PetscCall(WriteRealArray(s, *viewer, "area", c->n, c->area));
-  PetscCall(WriteRealArray(s, *viewer, "seconds", c->n, c->seconds));
-  PetscCall(WriteIntArray(s, *viewer, "contact_points", c->n, c->contact_points));
-  PetscCall(WriteIntArray(s, *viewer, "outer_iterations", c->n, c->outer_iterations));
-  PetscCall(WriteIntArray(s, *viewer, "ksp_iterations", c->n, c->ksp_iterations));
-  PetscCall(WriteIntArray(s, *viewer, "compliance_applications", c->n, c->compliance_applications));
+  /* Every column as a 1-D float64 dataset (counts too: PETSc's IS viewer adds a block dimension). */
+  PetscCall(PetscMalloc1(c->n + 1, &column));
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    for (PetscInt k = 0; k < c->n; k++) column[k] = AdhCurveValue(c, k, j);
+    PetscCall(WriteRealArray(s, *viewer, AdhCurveColumns[j].name, c->n, column));
+  }
+  PetscCall(PetscFree(column));
   PetscCall(WriteRealArray(s, *viewer, "path", s->npath, s->path));
   PetscCall(PetscViewerHDF5PopGroup(*viewer));
   PetscCall(PetscViewerDestroy(viewer));

@@ -1,6 +1,6 @@
 /* Package registration: class id, log events, and FFTW-MPI initialisation, done once. */
 #include <fftw3-mpi.h>
-#include "adhbem.h"
+#include "solverimpl.h"
 
 PetscClassId  ADH_CLASSID;
 PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate;
@@ -11,6 +11,7 @@ static PetscErrorCode AdhFinalizePackage(void)
 {
   PetscFunctionBegin;
   fftw_mpi_cleanup();
+  PetscCall(AdhControlDestroyList_Private());
   AdhPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

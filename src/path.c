@@ -1,50 +1,53 @@
-/* Indentation paths: the starting state, the legs of -adh_path, and the recorded curve. */
+/* Paths: the starting state, the legs of -adh_path (indentations, or forces under force
+   control), and the recorded curve. */
 #include "solverimpl.h"
 
-PetscErrorCode AdhCurveAppend_Private(AdhCurve *c, PetscReal d, PetscReal F, PetscReal A, PetscInt pts, PetscInt outer, PetscInt ksp, PetscInt mults, PetscReal sec)
+#define COLUMN(name, integer) {#name, offsetof(AdhState, name), integer}
+const AdhCurveColumn AdhCurveColumns[] = {
+  COLUMN(d, PETSC_FALSE),
+  COLUMN(force, PETSC_FALSE),
+  COLUMN(area, PETSC_FALSE),
+  COLUMN(contact_points, PETSC_TRUE),
+  COLUMN(outer_iterations, PETSC_TRUE),
+  COLUMN(ksp_iterations, PETSC_TRUE),
+  COLUMN(seconds, PETSC_FALSE),
+  COLUMN(compliance_applications, PETSC_TRUE),
+  COLUMN(patches, PETSC_TRUE),
+  COLUMN(mean_gap, PETSC_FALSE),
+  COLUMN(max_tension_ratio, PETSC_FALSE),
+  COLUMN(area_tension, PETSC_FALSE),
+  COLUMN(area_compression, PETSC_FALSE),
+  COLUMN(pulled_off, PETSC_TRUE),
+};
+const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
+
+PetscReal AdhCurveValue(const AdhCurve *c, PetscInt k, PetscInt column)
+{
+  const char *field = (const char *)&c->state[k] + AdhCurveColumns[column].offset;
+  return AdhCurveColumns[column].integer ? (PetscReal) * (const PetscInt *)field : *(const PetscReal *)field;
+}
+
+PetscErrorCode AdhCurveAppend_Private(AdhCurve *c, const AdhState *st)
 {
   PetscFunctionBegin;
   if (c->n == c->cap) {
-    PetscInt cap = PetscMax(64, 2 * c->cap);
-    PetscCall(PetscRealloc(cap * sizeof(PetscReal), &c->d));
-    PetscCall(PetscRealloc(cap * sizeof(PetscReal), &c->force));
-    PetscCall(PetscRealloc(cap * sizeof(PetscReal), &c->area));
-    PetscCall(PetscRealloc(cap * sizeof(PetscReal), &c->seconds));
-    PetscCall(PetscRealloc(cap * sizeof(PetscInt), &c->contact_points));
-    PetscCall(PetscRealloc(cap * sizeof(PetscInt), &c->outer_iterations));
-    PetscCall(PetscRealloc(cap * sizeof(PetscInt), &c->ksp_iterations));
-    PetscCall(PetscRealloc(cap * sizeof(PetscInt), &c->compliance_applications));
-    c->cap = cap;
+    c->cap = PetscMax(64, 2 * c->cap);
+    PetscCall(PetscRealloc(c->cap * sizeof(AdhState), &c->state));
   }
-  c->d[c->n]                       = d;
-  c->force[c->n]                   = F;
-  c->area[c->n]                    = A;
-  c->seconds[c->n]                 = sec;
-  c->contact_points[c->n]          = pts;
-  c->outer_iterations[c->n]        = outer;
-  c->ksp_iterations[c->n]          = ksp;
-  c->compliance_applications[c->n] = mults;
-  c->n++;
+  c->state[c->n++] = *st;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode AdhCurveDestroy_Private(AdhCurve *c)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFree(c->d));
-  PetscCall(PetscFree(c->force));
-  PetscCall(PetscFree(c->area));
-  PetscCall(PetscFree(c->seconds));
-  PetscCall(PetscFree(c->contact_points));
-  PetscCall(PetscFree(c->outer_iterations));
-  PetscCall(PetscFree(c->ksp_iterations));
-  PetscCall(PetscFree(c->compliance_applications));
+  PetscCall(PetscFree(c->state));
   PetscCall(PetscMemzero(c, sizeof(*c)));
   PetscFunctionReturn(0);
 }
 
 /* Marks the local points with h - d <= 0 (touching or overlapping at indentation d). */
-static PetscErrorCode SetFromOverlap(AdhSolver s, PetscReal d, PetscBool strict)
+PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBool strict)
 {
   const PetscScalar *ha;
   PetscInt           n, k;
@@ -55,37 +58,43 @@ static PetscErrorCode SetFromOverlap(AdhSolver s, PetscReal d, PetscBool strict)
   for (k = 0; k < n; k++) s->in_set[k] = strict ? PetscRealPart(ha[k]) - d < 0 : PetscRealPart(ha[k]) - d <= 0;
   PetscCall(VecRestoreArrayRead(s->h, &ha));
   PetscCall(VecSet(s->p, 0.0));
+  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+  s->pulled_off = PETSC_FALSE;
   PetscCall(AdhSolverRebuildSet_Private(s));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal d0)
+PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 {
-  PetscInt outer = 0, ksp = 0, mults = 0;
+  PetscInt  outer = 0, ksp = 0, mults = 0;
+  PetscReal dtouch;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
+  PetscCall(VecMin(s->h, NULL, &dtouch));
   if (s->start == ADH_START_HERTZ) {
-    /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap. */
-    PetscCall(SetFromOverlap(s, d0, PETSC_TRUE));
+    /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap, or under force control
+       from the first touch. */
+    PetscCheck(!s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+    PetscCall(AdhSolverSetFromOverlap_Private(s, s->force_control ? dtouch : target, (PetscBool)!s->force_control));
+    s->d        = dtouch;
     s->adhesive = PETSC_FALSE;
-    PetscCall(AdhSolverStep(s, d0));
+    PetscCall(AdhSolverStep(s, target));
     s->adhesive = PETSC_TRUE;
   } else {
-    /* Load with adhesion from first touch, where the apex points carry no load, to d0. */
-    PetscReal dtouch;
-    PetscCall(VecMin(s->h, NULL, &dtouch));
-    if (d0 > dtouch) {
-      PetscCall(SetFromOverlap(s, dtouch, PETSC_FALSE));
+    /* Load with adhesion from first touch, where the apex points carry no load, to the target in
+       -adh_steps steps. */
+    const PetscReal t0 = s->force_control ? 0.0 : dtouch;
+    PetscCall(AdhSolverSetFromOverlap_Private(s, PetscMin(dtouch, s->force_control ? dtouch : target), PETSC_FALSE));
+    s->d = dtouch;
+    if (s->force_control || target > dtouch) {
       for (PetscInt k = 1; k <= s->steps; k++) {
-        PetscCall(AdhSolverStep(s, dtouch + (d0 - dtouch) * k / s->steps));
+        PetscCall(AdhSolverStep(s, t0 + (target - t0) * k / s->steps));
         outer += s->step_outer; ksp += s->step_ksp; mults += s->step_mults;
+        if (s->pulled_off) break;
       }
       s->step_outer = outer; s->step_ksp = ksp; s->step_mults = mults;
-    } else {
-      PetscCall(SetFromOverlap(s, d0, PETSC_FALSE));
-      PetscCall(AdhSolverStep(s, d0));
-    }
+    } else PetscCall(AdhSolverStep(s, target));
   }
   PetscFunctionReturn(0);
 }
@@ -106,19 +115,31 @@ PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscR
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(st, sizeof(*st)));
+  PetscCall(AdhSolverGetState(s, &st->d, &st->force, &st->area, &st->contact_points, &st->outer_iterations, &st->ksp_iterations, &st->compliance_applications));
+  PetscCall(AdhStatisticsCompute_Private(s, st));
+  st->pulled_off = s->pulled_off;
+  PetscFunctionReturn(0);
+}
+
 /* Appends the current state to the curve, prints it with -adh_monitor, writes its fields. */
 static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
 {
-  PetscReal      F, A;
+  AdhState       st;
   PetscLogDouble t1;
 
   PetscFunctionBegin;
+  PetscCall(AdhSolverComputeState(s, &st));
   PetscCall(PetscTime(&t1));
-  PetscCall(AdhSolverGetState(s, NULL, &F, &A, NULL, NULL, NULL, NULL));
-  PetscCall(AdhCurveAppend_Private(&s->curve, s->d, F, A, s->npoints, s->step_outer, s->step_ksp, s->step_mults, (PetscReal)(t1 - t0)));
+  st.seconds = (PetscReal)(t1 - t0);
+  PetscCall(AdhCurveAppend_Private(&s->curve, &st));
   if (s->monitor) {
-    if (s->curve.n == 1) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "outer", "ksp", "K-mults", "seconds"));
-    PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f\n", s->curve.n - 1, (double)s->d, (double)F, (double)A, s->npoints, s->step_outer, s->step_ksp, s->step_mults, (double)(t1 - t0)));
+    if (s->curve.n == 1) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "patches", "outer", "ksp", "K-mults", "seconds"));
+    PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %7" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f\n", s->curve.n - 1, (double)st.d, (double)st.force, (double)st.area, st.contact_points, st.patches, st.outer_iterations, st.ksp_iterations, st.compliance_applications, (double)st.seconds));
+    if (st.pulled_off) PetscCall(PetscPrintf(s->comm, "pull-off at d = %g, force %g: the contact has come off, the leg ends\n", (double)st.d, (double)st.force));
   }
   if (viewer && s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
   PetscFunctionReturn(0);
@@ -135,17 +156,29 @@ static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer)
   for (PetscInt leg = 1; leg < s->npath; leg++) {
     const PetscReal a = s->path[leg - 1], b = s->path[leg];
     for (PetscInt k = 1; k <= s->steps; k++) {
-      const PetscBool had_contact = s->npoints > 0;
       PetscCall(PetscTime(&t0));
       PetscCall(AdhSolverStep(s, a + (b - a) * k / s->steps));
       PetscCall(Record(s, t0, viewer));
-      if (had_contact && !s->npoints && b < a) {
-        /* Pull-off: the rest of this unloading leg has nothing in contact. */
-        if (s->monitor) PetscCall(PetscPrintf(s->comm, "pull-off at d = %g: the contact set is empty, leg %" PetscInt_FMT " ends\n", (double)s->d, leg));
-        break;
-      }
+      if (s->pulled_off) break; /* the rest of this leg has nothing in contact */
     }
   }
+  PetscFunctionReturn(0);
+}
+
+/* Warns when no state of the path touches the surface. */
+static PetscErrorCode CheckTouched(AdhSolver s)
+{
+  PetscInt  k, touched = 0;
+  PetscReal dtouch, dmax = PETSC_MIN_REAL;
+
+  PetscFunctionBegin;
+  for (k = 0; k < s->curve.n; k++) {
+    touched += s->curve.state[k].contact_points > 0;
+    dmax = PetscMax(dmax, s->curve.state[k].d);
+  }
+  if (touched || !s->curve.n) PetscFunctionReturn(0);
+  PetscCall(VecMin(s->h, NULL, &dtouch));
+  PetscCall(PetscPrintf(s->comm, "adhbem: warning: the path never touches the surface (first touch at d = %g, the deepest state reached d = %g; -adh_path)\n", (double)dtouch, (double)dmax));
   PetscFunctionReturn(0);
 }
 
@@ -165,5 +198,6 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
     PetscCall(AdhOutputClose_Private(s, s->output, &viewer));
   }
   PetscCall(ierr);
+  PetscCall(CheckTouched(s));
   PetscFunctionReturn(0);
 }

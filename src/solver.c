@@ -27,12 +27,15 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
+  s->pulloff_rtol     = 1e-3;
+  s->monitor_interval = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
   s->path[0] = 0.01;
   s->path[1] = 0.0;
   PetscCall(AdhGridCreate(comm, &s->grid));
   s->grid->fftw_timelimit = 0.01; /* many windows to plan, few whole-grid multiplies */
+  PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
   *solver = s;
   PetscFunctionReturn(0);
 }
@@ -48,9 +51,11 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
 
 PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
 {
-  PetscInt  n = 256;
-  PetscReal path[256];
-  PetscBool set, certify = s->certify;
+  PetscInt          n = 256;
+  PetscReal         path[256];
+  PetscBool         set, certify = s->certify;
+  char              control[64];
+  PetscFunctionList controls;
 
   PetscFunctionBegin;
   PetscCall(AdhGridSetFromOptions(s->grid));
@@ -61,7 +66,10 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, NULL));
-  PetscCall(PetscOptionsRealArray("-adh_path", "Indentation path breakpoints d0,d1,...", "AdhSolver", path, &n, &set));
+  PetscCall(AdhControlGetList_Private(&controls));
+  PetscCall(PetscOptionsFList("-adh_control", "Load control: displacement (-adh_path holds indentations d) or force (-adh_path holds forces F = sum of p hx hy; on a periodic cell, mean pressure x cell area)", "AdhSolverSetControlType", controls, s->control_type, control, sizeof(control), &set));
+  if (set) PetscCall(AdhSolverSetControlType(s, control));
+  PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force)", "AdhSolver", path, &n, &set));
   if (set) {
     PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
     PetscCall(PetscFree(s->path));
@@ -75,7 +83,9 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
-  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step", "AdhSolver", s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force (bisection between the last force carried and the first one not)", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
+  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolver", s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
   PetscCall(PetscOptionsBool("-adh_fields", "Write pressure, displacement, gap and contact mask of every step", "AdhSolver", s->fields, &s->fields, NULL));
   PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
   PetscOptionsEnd();
@@ -83,6 +93,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
+  PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
   if (s->ksp) PetscCall(KSPSetFromOptions(s->ksp));
   PetscFunctionReturn(0);
@@ -142,7 +153,6 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(AdhGridSetUp(s->grid));
     PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
     PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
-    PetscCall(MatAdhComplianceGetLambdaMin(s->K, &s->lambda_min));
     PetscCall(DMCreateGlobalVector(s->grid->da, &s->h));
     PetscCall(VecDuplicate(s->h, &s->Sigma_field));
     PetscCall(VecDuplicate(s->h, &s->p));
@@ -157,6 +167,11 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(VecSet(s->zero, 0.0));
     PetscCall(VecSet(s->p, 0.0));
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
+    {
+      PetscScalar sum;
+      PetscCall(VecSum(s->h, &sum));
+      s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+    }
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
@@ -177,6 +192,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: periodic stiffness E*|q|/2 restricted to the contact set"));
     PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
     PetscCall(KSPSetFromOptions(s->ksp));
+    if (s->cops.setup) PetscCall(s->cops.setup(s));
     s->setup = PETSC_TRUE;
   }
   PetscCall(ComputeCriticalStress(s));
@@ -242,7 +258,7 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(AdhGridView(s->grid, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "lambda_min bound %g, certified early stop %s\n", (double)s->lambda_min, s->certify && s->lambda_min > 0 ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && !s->force_control ? "on" : "off"));
   if (s->ksp) PetscCall(KSPView(s->ksp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);
@@ -254,6 +270,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
 
   PetscFunctionBegin;
   if (!s) PetscFunctionReturn(0);
+  if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));
   PetscCall(ISDestroy(&s->contact_op));

@@ -13,6 +13,21 @@ typedef struct {
   Mat      K, S;   /* free compliance and periodic stiffness on the window */
 } AdhBox;
 
+/* What a load control does (control.c): set-up of its own objects, one step to a target (an
+   indentation or a force), and clean-up. */
+typedef struct {
+  PetscErrorCode (*setup)(AdhSolver);
+  PetscErrorCode (*step)(AdhSolver, PetscReal);
+  PetscErrorCode (*destroy)(AdhSolver);
+} AdhControlOps;
+
+/* A copy of the contact state (force control: the state before a step, for pull-off). */
+typedef struct {
+  char     *in_set;
+  Vec       p, xunit;
+  PetscReal d;
+} AdhSavedState;
+
 struct _n_AdhSolver {
   MPI_Comm    comm;
   char       *prefix;
@@ -31,7 +46,19 @@ struct _n_AdhSolver {
   Mat       K;                /* compliance */
   Mat       S;                /* periodic stiffness: the preconditioner */
   Vec       h, Sigma_field, p, u, g, zero;
-  PetscReal lambda_min;       /* lower bound on eigenvalues of every K_CC */
+  PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
+
+  /* load control */
+  char          control_type[64];
+  AdhControlOps cops;
+  PetscBool     force_control;  /* the path holds forces */
+  Vec           xunit;          /* force control: response of the set to a unit indentation, K_CC x = 1 */
+  Mat           Kmean;          /* force control, periodic: K + c0 (1 1^T)/N, positive definite on every set */
+  PetscReal     c0;             /* its mean-mode compliance */
+  PetscReal     e;              /* force control: the indentation of K_op's equations, d + c0 mean(p) */
+  PetscReal     pulloff_rtol;   /* force control: resolution of the pull-off force */
+  AdhSavedState previous;       /* force control: the state before the current step */
+  PetscBool     pulled_off;     /* the last step ended in pull-off */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
@@ -44,6 +71,7 @@ struct _n_AdhSolver {
   Mat       Kcc;              /* K restricted to the set, applied on the window or the grid */
   IS        contact_op;       /* the set in the numbering of the operator behind Kcc */
   Mat       Kop, Sop;         /* compliance and stiffness of the window or grid in use (borrowed) */
+  PetscReal lambda_set;       /* lower bound on the eigenvalues of K_CC for the current set */
   Vec       op_in, op_out;    /* work vectors on that window or grid */
   VecScatter set_scatter;     /* set values -> that window or grid */
   PetscInt *set_local, nset_local; /* local offsets of this rank's points in the set */
@@ -58,13 +86,15 @@ struct _n_AdhSolver {
   /* the current solve, read by the convergence test and the preconditioner */
   const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
   PetscReal bnorm;
-  PetscBool certify, certified_stop;
+  PetscBool certify, certify_solve, certified_stop;
 
   /* state and counters */
   PetscReal d;
   PetscBool adhesive;         /* false while computing a Hertz (dgamma = 0) start */
   PetscInt  max_outer;
   PetscInt  step_outer, step_ksp, step_mults;
+  PetscLogDouble progress_time;  /* last progress line inside a step (-adh_monitor) */
+  PetscReal monitor_interval;   /* seconds between progress lines */
 
   /* path and output */
   PetscReal *path;
@@ -81,7 +111,19 @@ PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyBoxes_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMultCount_Private(AdhSolver, PetscInt *);
-PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, PetscReal d, PetscReal F, PetscReal A, PetscInt pts, PetscInt outer, PetscInt ksp, PetscInt mults, PetscReal sec);
+PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, const AdhState *);
+PETSC_INTERN Vec            AdhSolverThreshold_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
+PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);
+PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal d, PetscBool strict);
+PETSC_INTERN PetscErrorCode AdhSolverStep_Displacement(AdhSolver, PetscReal);
+PETSC_INTERN PetscErrorCode AdhControlRegisterAll_Private(void);
+PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
+PETSC_INTERN PetscErrorCode AdhControlGetList_Private(PetscFunctionList *);
+PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
 PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);

@@ -163,27 +163,23 @@ static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
-static PyObject *real_list(PetscInt n, const PetscReal *v)
-{
-  PyObject *l = PyList_New(n);
-  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(l, k, PyFloat_FromDouble((double)v[k]));
-  return l;
-}
-
-static PyObject *int_list(PetscInt n, const PetscInt *v)
-{
-  PyObject *l = PyList_New(n);
-  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(l, k, PyLong_FromLong((long)v[k]));
-  return l;
-}
-
 static PyObject *py_solver_curve(PyObject *self, PyObject *args)
 {
-  PyObject       *cap;
+  PyObject       *cap, *dict;
   const AdhCurve *c;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
   PyPetscCall(AdhSolverGetCurve(solver_get(cap), &c));
-  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N}", "d", real_list(c->n, c->d), "force", real_list(c->n, c->force), "area", real_list(c->n, c->area), "seconds", real_list(c->n, c->seconds), "contact_points", int_list(c->n, c->contact_points), "outer_iterations", int_list(c->n, c->outer_iterations), "ksp_iterations", int_list(c->n, c->ksp_iterations), "compliance_applications", int_list(c->n, c->compliance_applications));
+  dict = PyDict_New();
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    PyObject *l = PyList_New(c->n);
+    for (PetscInt k = 0; k < c->n; k++) {
+      const PetscReal v = AdhCurveValue(c, k, j);
+      PyList_SET_ITEM(l, k, AdhCurveColumns[j].integer ? PyLong_FromLong((long)v) : PyFloat_FromDouble((double)v));
+    }
+    PyDict_SetItemString(dict, AdhCurveColumns[j].name, l);
+    Py_DECREF(l);
+  }
+  return dict;
 }
 
 static PyObject *py_solver_objects(PyObject *self, PyObject *args)

@@ -1,0 +1,279 @@
+/* Load control, a registered type (-adh_control): what the path's values are and how a step
+   reaches one.
+
+   displacement: the path holds indentations d; a step is the Pohrt-Popov loop at fixed d
+                 (contact.c).
+   force:        the path holds forces F (for a periodic cell, F = mean pressure x cell area); a
+                 step finds the d at which the equilibrium set carries exactly F. For a fixed set C
+                 the pressure is affine in d, p = d x - y with K_CC x = 1 and K_CC y = h_C, so one
+                 extra solve per set update gives the d of that set; then detach and attach as
+                 under displacement control, until the set is stable. When the set empties, no
+                 equilibrium carries F: the contact has come off.
+   On a periodic cell the mean displacement is free (K has no mean mode), and the whole cell in
+   contact makes K_CC singular. Under force control the mean pressure is known, so the solve uses
+   K + c0 (1 1^T)/N instead, positive definite on every set, and takes the mean displacement
+   c0 mean(p) back out of d. */
+#include "solverimpl.h"
+
+static PetscFunctionList AdhControlList       = NULL;
+static PetscBool         AdhControlRegistered = PETSC_FALSE;
+
+PetscErrorCode AdhControlRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
+{
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(PetscFunctionListAdd(&AdhControlList, name, create));
+  PetscFunctionReturn(0);
+}
+
+/* ---- displacement control ---- */
+
+static PetscErrorCode AdhControlCreate_Displacement(AdhSolver s)
+{
+  PetscFunctionBegin;
+  s->cops.step        = AdhSolverStep_Displacement;
+  s->force_control    = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* ---- force control ---- */
+
+static PetscErrorCode SetUp_Force(AdhSolver s)
+{
+  PetscFunctionBegin;
+  if (!s->xunit) {
+    PetscCall(VecDuplicate(s->p, &s->xunit));
+    PetscCall(VecSet(s->xunit, 0.0));
+  }
+  if (s->boundary == ADH_BOUNDARY_PERIODIC && !s->Kmean) {
+    /* c0 = 2/(E* q_min), the compliance of the longest wave: the Fourier preconditioner's mean
+       mode is its inverse, so the preconditioned operator stays well conditioned. */
+    s->c0 = 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly));
+    PetscCall(MatCreateAdhMeanCompliance(s->K, s->c0, &s->Kmean));
+    PetscCall(AdhSolverRebuildSet_Private(s));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_Force(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(s->previous.in_set));
+  PetscCall(VecDestroy(&s->previous.p));
+  PetscCall(VecDestroy(&s->previous.xunit));
+  PetscCall(VecDestroy(&s->xunit));
+  PetscCall(MatDestroy(&s->Kmean));
+  s->c0 = 0.0;
+  PetscFunctionReturn(0);
+}
+
+/* A copy of the state before a force-controlled step, to go back to when the step finds no
+   equilibrium (pull-off). */
+static PetscErrorCode SaveState(AdhSolver s, AdhSavedState *st)
+{
+  PetscFunctionBegin;
+  if (!st->p) {
+    PetscCall(PetscMalloc1(s->nlocal + 1, &st->in_set));
+    PetscCall(VecDuplicate(s->p, &st->p));
+    PetscCall(VecDuplicate(s->p, &st->xunit));
+  }
+  PetscCall(PetscArraycpy(st->in_set, s->in_set, s->nlocal));
+  PetscCall(VecCopy(s->p, st->p));
+  PetscCall(VecCopy(s->xunit, st->xunit));
+  st->d = s->d;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreState(AdhSolver s, AdhSavedState *st)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(s->in_set, st->in_set, s->nlocal));
+  PetscCall(VecCopy(st->p, s->p));
+  PetscCall(VecCopy(st->xunit, s->xunit));
+  s->d = st->d;
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  PetscFunctionReturn(0);
+}
+
+/* The points of the first touch, h = min h, with no pressure. */
+static PetscErrorCode SeedFirstTouch(AdhSolver s)
+{
+  PetscReal hmin;
+
+  PetscFunctionBegin;
+  PetscCall(VecMin(s->h, NULL, &hmin));
+  PetscCall(AdhSolverSetFromOverlap_Private(s, hmin, PETSC_FALSE));
+  PetscCall(VecSet(s->xunit, 0.0));
+  s->d = hmin;
+  s->e = hmin;
+  PetscFunctionReturn(0);
+}
+
+/* The equilibrium set carrying F, from the current set; it may empty (no equilibrium). */
+static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F)
+{
+  const PetscReal A  = s->grid->hx * s->grid->hy;
+  /* d = e - c0 mean(p), and mean(p) = F / (cell area) is fixed by the target */
+  const PetscReal dc = s->Kmean ? s->c0 * F / (A * s->grid->Nx * s->grid->Ny) : 0.0;
+  PetscInt        outer, removed, added;
+
+  PetscFunctionBegin;
+  s->e = s->d + dc;
+  for (outer = 1; s->npoints; outer++) {
+    PetscScalar Fp, Fx;
+    PetscReal   de;
+
+    PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set for the force %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)F, s->max_outer);
+    PetscCall(AdhSolverMonitorProgress_Private(s, outer));
+    PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
+    PetscCall(AdhSolverSolveOnSet_Private(s, s->p, s->e, s->h, PETSC_FALSE));
+    PetscCall(VecSum(s->p, &Fp));
+    PetscCall(VecSum(s->xunit, &Fx));
+    PetscCheck(PetscRealPart(Fx) > 0, s->comm, PETSC_ERR_PLIB, "The unit-indentation response of the contact set carries no force");
+    de = (F / A - PetscRealPart(Fp)) / PetscRealPart(Fx);
+    s->e += de;
+    PetscCall(VecAXPY(s->p, de, s->xunit)); /* x vanishes off the set */
+    s->d = s->e - dc;
+    PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
+    PetscCall(AdhSolverDetach_Private(s, &removed));
+    added = 0;
+    if (!removed) PetscCall(AdhSolverAttach_Private(s, &added));
+    if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
+    PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
+    s->step_outer++;
+    if (!removed && !added) break;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Force control: the equilibrium set carrying F. When none does (the set empties), the contact
+   has come off: bisect between the previous state's force and F from the previous state, and end
+   on the state carrying the largest tension (within -adh_pulloff_rtol), marked pulled off. */
+static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
+{
+  const PetscReal A = s->grid->hx * s->grid->hy;
+  PetscScalar     sum;
+  PetscReal       carried, failed = F;
+
+  PetscFunctionBegin;
+  if (!s->npoints) {
+    if (F <= 0) PetscFunctionReturn(0); /* off the surface, and nothing pulls it back */
+    PetscCall(SeedFirstTouch(s));
+  }
+  PetscCall(VecSum(s->p, &sum));
+  carried = PetscRealPart(sum) * A;
+  PetscCall(SaveState(s, &s->previous));
+  PetscCall(Equilibrate(s, F));
+  if (s->npoints) PetscFunctionReturn(0);
+  PetscCall(RestoreState(s, &s->previous));
+  while (PetscAbsReal(failed - carried) > s->pulloff_rtol * PetscAbsReal(carried)) {
+    const PetscReal mid = 0.5 * (carried + failed);
+    PetscCall(Equilibrate(s, mid));
+    if (s->npoints) {
+      carried = mid;
+      PetscCall(SaveState(s, &s->previous));
+    } else {
+      failed = mid;
+      PetscCall(RestoreState(s, &s->previous));
+    }
+  }
+  PetscCall(AdhSolverComputeGap_Private(s));
+  s->pulled_off = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AdhControlCreate_Force(AdhSolver s)
+{
+  PetscFunctionBegin;
+  s->cops.setup     = SetUp_Force;
+  s->cops.step      = Step_Force;
+  s->cops.destroy   = Destroy_Force;
+  s->force_control  = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhControlRegisterAll_Private(void)
+{
+  PetscFunctionBegin;
+  if (AdhControlRegistered) PetscFunctionReturn(0);
+  AdhControlRegistered = PETSC_TRUE;
+  PetscCall(AdhControlRegister(ADHCONTROLDISPLACEMENT, AdhControlCreate_Displacement));
+  PetscCall(AdhControlRegister(ADHCONTROLFORCE, AdhControlCreate_Force));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhControlDestroyList_Private(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListDestroy(&AdhControlList));
+  AdhControlRegistered = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhControlGetList_Private(PetscFunctionList *list)
+{
+  PetscFunctionBegin;
+  *list = AdhControlList;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
+{
+  PetscErrorCode (*create)(AdhSolver);
+  PetscBool same;
+
+  PetscFunctionBegin;
+  PetscCall(AdhControlRegisterAll_Private());
+  PetscCall(PetscStrcmp(s->control_type, type, &same));
+  if (same) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListFind(AdhControlList, type, &create));
+  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_control: unknown load control '%s' (displacement or force)", type);
+  PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_control: the load control cannot change after set-up");
+  if (s->cops.destroy) PetscCall(s->cops.destroy(s));
+  PetscCall(PetscMemzero(&s->cops, sizeof(s->cops)));
+  PetscCall(create(s));
+  PetscCall(PetscStrncpy(s->control_type, type, sizeof(s->control_type)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
+{
+  PetscFunctionBegin;
+  *type = s->control_type;
+  PetscFunctionReturn(0);
+}
+
+/* One step to the target (d, or F under force control), with its counts. */
+PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
+{
+  PetscInt mults0, mults1;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverSetUp(s));
+  PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
+  PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
+  PetscCall(AdhSolverMultCount_Private(s, &mults0));
+  PetscCall(PetscArrayzero(s->left, s->nlocal));
+  s->step_outer = 0;
+  s->step_ksp   = 0;
+  if (s->pulled_off) {
+    /* The last step ended in pull-off: the bodies are apart now. */
+    PetscCall(PetscArrayzero(s->in_set, s->nlocal));
+    PetscCall(VecSet(s->p, 0.0));
+    if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+    PetscCall(AdhSolverRebuildSet_Private(s));
+    s->pulled_off = PETSC_FALSE;
+  }
+  PetscCall(s->cops.step(s, target));
+  PetscCall(AdhSolverMultCount_Private(s, &mults1));
+  s->step_mults = mults1 - mults0;
+  PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverIsPulledOff(AdhSolver s, PetscBool *pulled_off)
+{
+  PetscFunctionBegin;
+  *pulled_off = s->pulled_off;
+  PetscFunctionReturn(0);
+}

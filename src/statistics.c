@@ -1,0 +1,123 @@
+/* Statistics of a contact state, recorded per step in the curve: contact patches, mean gap,
+   largest tension over the critical stress, and the areas in tension and in compression.
+
+   Patches are the connected clusters of the contact set with edge neighbours (4-connectivity),
+   wrapping across the edges of a periodic cell. Each rank labels the clusters of its own rows
+   with a union-find; rank 0 then joins the labels that touch across rank boundaries (and across
+   the periodic seam), from the first and last row of every rank only. O(N) work per step. */
+#include "solverimpl.h"
+
+static PetscInt Find(PetscInt *parent, PetscInt a)
+{
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+/* Joins the sets of a and b; returns 1 when they were apart. */
+static PetscInt Union(PetscInt *parent, PetscInt a, PetscInt b)
+{
+  a = Find(parent, a);
+  b = Find(parent, b);
+  if (a == b) return 0;
+  if (a < b) parent[b] = a;
+  else parent[a] = b;
+  return 1;
+}
+
+static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
+{
+  const PetscInt  Nx = s->grid->Nx, n = s->nlocal, ym = n / Nx;
+  const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  PetscInt       *parent, *label, *edges = NULL, *all = NULL, *counts = NULL, *offset = NULL;
+  PetscInt        k, i, j, local = 0, total, merged = 0;
+  PetscMPIInt     rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCall(PetscMalloc2(n + 1, &parent, n + 1, &label));
+  for (k = 0; k < n; k++) parent[k] = k;
+  for (j = 0; j < ym; j++)
+    for (i = 0; i < Nx; i++) {
+      k = j * Nx + i;
+      if (!s->in_set[k]) continue;
+      if (i > 0 && s->in_set[k - 1]) Union(parent, k, k - 1);
+      if (j > 0 && s->in_set[k - Nx]) Union(parent, k, k - Nx);
+    }
+  if (periodic && Nx > 1)
+    for (j = 0; j < ym; j++)
+      if (s->in_set[j * Nx] && s->in_set[j * Nx + Nx - 1]) Union(parent, j * Nx, j * Nx + Nx - 1);
+  /* local cluster numbers 0 .. local-1 at the roots */
+  for (k = 0; k < n; k++)
+    if (s->in_set[k] && Find(parent, k) == k) label[k] = local++;
+
+  /* This rank's cluster count, then the labels of its first and last row (-1: not in the set). */
+  PetscCall(PetscMalloc1(2 * Nx + 1, &edges));
+  edges[0] = local;
+  for (i = 0; i < Nx; i++) {
+    edges[1 + i]      = s->in_set[i] ? label[Find(parent, i)] : -1;
+    edges[1 + Nx + i] = s->in_set[(ym - 1) * Nx + i] ? label[Find(parent, (ym - 1) * Nx + i)] : -1;
+  }
+  if (!rank) PetscCall(PetscMalloc1((2 * Nx + 1) * size, &all));
+  PetscCallMPI(MPI_Gather(edges, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, all, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, 0, s->comm));
+  if (!rank) {
+    PetscInt *gparent;
+    PetscCall(PetscMalloc2(size, &counts, size + 1, &offset));
+    offset[0] = 0;
+    for (PetscMPIInt r = 0; r < size; r++) {
+      counts[r]     = all[r * (2 * Nx + 1)];
+      offset[r + 1] = offset[r] + counts[r];
+    }
+    total = offset[size];
+    PetscCall(PetscMalloc1(total + 1, &gparent));
+    for (k = 0; k < total; k++) gparent[k] = k;
+    /* last row of rank r against first row of rank r+1; on a periodic cell the last rank's last
+       row also meets rank 0's first row */
+    for (PetscMPIInt r = 0; r < size; r++) {
+      const PetscMPIInt next = r + 1 < size ? r + 1 : 0;
+      const PetscInt   *last = all + r * (2 * Nx + 1) + 1 + Nx, *first = all + next * (2 * Nx + 1) + 1;
+      if (r + 1 == size && !periodic) break;
+      for (i = 0; i < Nx; i++)
+        if (last[i] >= 0 && first[i] >= 0) merged += Union(gparent, offset[r] + last[i], offset[next] + first[i]);
+    }
+    *patches = total - merged;
+    PetscCall(PetscFree(gparent));
+    PetscCall(PetscFree2(counts, offset));
+    PetscCall(PetscFree(all));
+  }
+  PetscCallMPI(MPI_Bcast(patches, 1, MPIU_INT, 0, s->comm));
+  PetscCall(PetscFree(edges));
+  PetscCall(PetscFree2(parent, label));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
+{
+  const PetscReal    A = s->grid->hx * s->grid->hy;
+  const PetscScalar *pa, *sa;
+  PetscScalar        gsum;
+  PetscReal          ratio = 0.0;
+  PetscInt           k, count[2] = {0, 0};
+
+  PetscFunctionBegin;
+  PetscCall(CountPatches(s, &st->patches));
+  PetscCall(VecSum(s->g, &gsum));
+  st->mean_gap = PetscRealPart(gsum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+  PetscCall(VecGetArrayRead(s->p, &pa));
+  PetscCall(VecGetArrayRead(s->Sigma_field, &sa));
+  for (k = 0; k < s->nlocal; k++) {
+    const PetscReal p = PetscRealPart(pa[k]), Sigma = PetscRealPart(sa[k]);
+    if (!s->in_set[k]) continue;
+    if (p < 0) count[0]++;
+    else if (p > 0) count[1]++;
+    if (p < 0 && Sigma > 0) ratio = PetscMax(ratio, -p / Sigma);
+  }
+  PetscCall(VecRestoreArrayRead(s->Sigma_field, &sa));
+  PetscCall(VecRestoreArrayRead(s->p, &pa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 2, MPIU_INT, MPI_SUM, s->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
+  st->area_tension      = count[0] * A;
+  st->area_compression  = count[1] * A;
+  st->max_tension_ratio = ratio;
+  PetscFunctionReturn(0);
+}

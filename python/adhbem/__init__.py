@@ -18,7 +18,7 @@ from petsc4py import PETSc  # noqa: E402
 from . import _adhbem  # noqa: E402
 from ._adhbem import chi, chi_square, critical_stress, love_coefficient  # noqa: E402,F401
 
-__all__ = ["PETSc", "Solver", "compliance", "grid_shape", "row_range", "local_rows", "set_local_rows",
+__all__ = ["PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows", "set_local_rows",
            "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
 
 
@@ -43,21 +43,76 @@ def compliance(n, size=1.0, E_star=1.0, boundary="free", comm=None):
     return _adhbem.compliance(comm, int(Nx), int(Ny), float(Lx), float(Ly), float(E_star), str(boundary))
 
 
+_surface_count = 0
+
+
+def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavelength=None,
+                  rms_height=None, rms_slope=None, seed=1, comm=None):
+    """A periodic, self-affine, Gaussian random surface on an n = N or (Nx, Ny) grid over
+    size = L or (Lx, Ly): returns (z, stats).
+
+    z is a ``PETSc.Vec`` of heights (mean zero) on the grid's row layout; it carries the grid's
+    DM, so ``gather(z, z)`` and ``local_rows(z, z)`` work. The power spectrum is flat below
+    2 pi/rolloff_wavelength (default: the cell size), ~ q^(-2(1+hurst)) up to
+    2 pi/cutoff_wavelength (default: 4 grid spacings) and zero above. Give rms_height or
+    rms_slope (default rms_slope 0.1, defined spectrally); it is realised exactly. The same seed
+    gives the same surface, bit for bit, on any number of ranks.
+
+    stats: the resolved parameters and the realised statistics (realised_rms_height,
+    realised_rms_slope, realised_mean, min_height, max_height, modes, ...). Bad parameters raise
+    PETSc.Error naming the option (-adh_hurst, -adh_rms_height, ...).
+    """
+    global _surface_count
+    _surface_count += 1
+    prefix = f"adhsurface{_surface_count}_"
+    Nx, Ny = _pair(n, "n")
+    Lx, Ly = _pair(size, "size")
+    comm = PETSc.COMM_WORLD if comm is None else comm
+    if not isinstance(comm, PETSc.Comm):
+        comm = PETSc.Comm(comm)
+    options = dict(hurst=hurst, rolloff_wavelength=rolloff_wavelength, cutoff_wavelength=cutoff_wavelength,
+                   rms_height=rms_height, rms_slope=rms_slope, seed=seed)
+    opts = PETSc.Options()
+    names = []
+    try:
+        for key, value in options.items():
+            if value is not None:
+                names.append(f"{prefix}adh_{key}")
+                opts[names[-1]] = _option_value(value)
+        return _adhbem.rough_surface(comm, int(Nx), int(Ny), float(Lx), float(Ly), prefix)
+    finally:
+        for name in names:
+            opts.delValue(name)
+
+
 def compliance_info(K):
     """dict(lambda_min=..., mult_count=...) of a compliance Mat."""
     return _adhbem.compliance_info(K)
 
 
+def _grid_dm(obj):
+    if isinstance(obj, PETSc.Mat):
+        return obj.getDM()
+    if isinstance(obj, PETSc.Vec):
+        # Not Vec.getDM(): in petsc4py 3.18 it keeps no reference of its own (a double free at
+        # exit). The composed object is the same DM, typed and referenced.
+        dm = obj.query("__PETSc_dm")
+        if dm is None:
+            raise ValueError("this Vec carries no grid DM (use rough_surface's Vec or pass the Mat)")
+        return dm
+    return obj
+
+
 def grid_shape(obj):
-    """(Nx, Ny) of the grid behind a compliance Mat (or its DM)."""
-    dm = obj.getDM() if isinstance(obj, PETSc.Mat) else obj
+    """(Nx, Ny) of the grid behind a compliance Mat, a grid Vec that carries its DM, or the DM."""
+    dm = _grid_dm(obj)
     Nx, Ny = dm.getSizes()
     return Nx, Ny
 
 
 def row_range(obj):
     """(j0, j1): the rows of the grid this rank owns."""
-    dm = obj.getDM() if isinstance(obj, PETSc.Mat) else obj
+    dm = _grid_dm(obj)
     (_, _), (j0, j1) = dm.getRanges()
     return j0, j1
 

@@ -4,6 +4,7 @@
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
+#include "surface.h"
 
 /* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \
@@ -41,6 +42,40 @@ static PyObject *py_compliance(PyObject *self, PyObject *args)
   }
   result = PyPetscMat_New(K);
   PyPetscCall(MatDestroy(&K));
+  return result;
+}
+
+/* A rough surface on a fresh Nx x Ny grid, from the options under prefix (set by __init__.py).
+   The Vec keeps the grid's DMDA, so adhbem.gather(z, z) works; the grid itself is freed. */
+static PyObject *py_rough_surface(PyObject *self, PyObject *args)
+{
+  PyObject      *pycomm, *result;
+  Py_ssize_t     Nx, Ny;
+  double         Lx, Ly;
+  const char    *prefix;
+  AdhGrid        grid;
+  AdhSurface     s;
+  Vec            z = NULL;
+  PetscErrorCode ierr;
+
+  if (!PyArg_ParseTuple(args, "Onndds", &pycomm, &Nx, &Ny, &Lx, &Ly, &prefix)) return NULL;
+  PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
+  PyPetscCall(AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly));
+  ierr = AdhSurfaceSetFromOptions(grid->comm, prefix, &s);
+  if (!ierr) ierr = AdhGridSetUp(grid);
+  if (!ierr) ierr = DMCreateGlobalVector(grid->da, &z);
+  if (!ierr) ierr = AdhSurfaceGenerate(grid, &s, z);
+  if (ierr) { /* no grid or Vec leaks on bad input */
+    (void)VecDestroy(&z);
+    (void)AdhGridDestroy(&grid);
+    PyPetscError_Set((int)ierr);
+    return NULL;
+  }
+  PyPetscCall(AdhGridDestroy(&grid));
+  result = Py_BuildValue("N{s:d,s:d,s:d,s:n,s:s,s:d,s:d,s:d,s:d,s:d,s:d,s:n}", PyPetscVec_New(z), "hurst", (double)s.hurst, "rolloff_wavelength", (double)s.used_rolloff_wavelength, "cutoff_wavelength", (double)s.used_cutoff_wavelength, "seed", (Py_ssize_t)s.seed,
+                         "requested", s.rms_height != PETSC_DEFAULT ? "rms_height" : "rms_slope", "requested_value", (double)(s.rms_height != PETSC_DEFAULT ? s.rms_height : s.rms_slope != PETSC_DEFAULT ? s.rms_slope : 0.1),
+                         "realised_rms_height", (double)s.realised_rms_height, "realised_rms_slope", (double)s.realised_rms_slope, "realised_mean", (double)s.realised_mean, "min_height", (double)s.min_height, "max_height", (double)s.max_height, "modes", (Py_ssize_t)s.modes);
+  PyPetscCall(VecDestroy(&z));
   return result;
 }
 
@@ -249,6 +284,7 @@ static PyMethodDef methods[] = {
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
+  {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
   {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, mult_count)"},
   {"love_coefficient", py_love, METH_VARARGS, "love_coefficient(x, y, hx, hy, Estar) -> displacement per unit pressure"},
   {"chi", py_chi, METH_VARARGS, "chi(hx, hy) -> element self-energy factor"},

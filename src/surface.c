@@ -1,0 +1,319 @@
+/* Random rough surfaces: a periodic, self-affine, Gaussian height field made in Fourier space
+   on the distributed grid and brought to real space by one inverse FFT (FFTW-MPI).
+
+   Determinism: the surface is the same to the last bit on any number of ranks.
+   - Each Fourier coefficient is drawn from (seed, kx, ky) alone by a counter-based hash
+     (splitmix64) and Box-Muller, never from a per-rank random stream.
+   - The inverse 2-D transform is done row-column by hand: a 1-D complex backward transform of
+     every kx column (all ky local in FFTW's transposed layout), FFTW-MPI's distributed
+     transpose (pure data movement, exact), then a 1-D c2r transform of every y row. Each line
+     goes through the same one-line plan whatever the decomposition, so every output value comes
+     from the same arithmetic. (A fftw_mpi c2r 2-D plan may pick other codelets, batch sizes or
+     SIMD lanes for other slab shapes, and on one rank it is a different, serial, plan.)
+   - Those plans are FFTW_ESTIMATE | FFTW_UNALIGNED (no timing, no dependence on where a line
+     starts) and made with FFTW's wisdom set aside: wisdom from an earlier measured plan (the
+     compliance's, possibly different on every rank) could otherwise stand in for them. The
+     caller's wisdom is put back afterwards.
+   - The scale factor and the realised statistics are sums over kx columns or y rows. Each
+     column's (row's) sum is formed in a fixed order by its one owner, the per-column sums are
+     combined by an MPI sum in which every entry has exactly one nonzero contribution (exact),
+     and all ranks then add them in global order. VecNorm would round differently per layout.
+   Same machine (libm, CPU features) assumed: FFTW's estimate and libm's log/cos are per build. */
+#include <fftw3-mpi.h>
+#include <stdint.h>
+#include "surface.h"
+
+/* A mode whose wavenumber lies on the cut-off to this relative rounding counts as inside. */
+#define EDGE_RTOL 1e-9
+/* Wavelength ranges are checked with this slack so that e.g. 2*L/N passes as 2 spacings. */
+#define RANGE_RTOL 1e-12
+
+static uint64_t SplitMix64(uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/* A complex Gaussian with E|c|^2 = 1 that depends only on the seed and the wavevector, so a
+   coefficient is the same whichever rank draws it (and on a finer grid of the same cell). */
+static void ModeGaussian(PetscInt seed, PetscInt kx, PetscInt ky, double *re, double *im)
+{
+  const uint64_t key = SplitMix64(SplitMix64(SplitMix64((uint64_t)seed) ^ (uint64_t)kx) ^ (uint64_t)ky);
+  const double   u1  = ((double)(SplitMix64(key ^ 1) >> 11) + 0.5) * 0x1p-53; /* in (0,1): log finite */
+  const double   u2  = (double)(SplitMix64(key ^ 2) >> 11) * 0x1p-53;
+  const double   r   = sqrt(-log(u1)); /* Rayleigh modulus with E r^2 = 1 */
+
+  *re = r * cos(2.0 * PETSC_PI * u2);
+  *im = r * sin(2.0 * PETSC_PI * u2);
+}
+
+PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhSurface *s)
+{
+  PetscBool seth, sets;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(s, sizeof(*s)));
+  s->hurst              = 0.8;
+  s->rolloff_wavelength = PETSC_DEFAULT;
+  s->cutoff_wavelength  = PETSC_DEFAULT;
+  s->rms_height         = PETSC_DEFAULT;
+  s->rms_slope          = PETSC_DEFAULT;
+  s->seed               = 1;
+  PetscOptionsBegin(comm, prefix, "adhbem rough surface (-adh_indenter rough)", "AdhSurface");
+  PetscCall(PetscOptionsReal("-adh_hurst", "Hurst exponent H in (0, 1]: C(q) ~ q^(-2(1+H)) between roll-off and cut-off", "AdhSurfaceGenerate", s->hurst, &s->hurst, NULL));
+  PetscCall(PetscOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default -2: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", s->rolloff_wavelength, &s->rolloff_wavelength, NULL));
+  PetscCall(PetscOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default -2: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", s->cutoff_wavelength, &s->cutoff_wavelength, NULL));
+  PetscCall(PetscOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default -2: not set; not with -adh_rms_slope)", "AdhSurfaceGenerate", s->rms_height, &s->rms_height, &seth));
+  PetscCall(PetscOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean |grad z|^2), defined spectrally from the Fourier coefficients (sum of q^2 |z_q|^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
+  PetscCall(PetscOptionsInt("-adh_seed", "Random seed: each Fourier coefficient is a hash of (seed, kx, ky)", "AdhSurfaceGenerate", s->seed, &s->seed, NULL));
+  PetscOptionsEnd();
+  PetscCheck(!(seth && sets), comm, PETSC_ERR_ARG_INCOMP, "-adh_rms_height and -adh_rms_slope: give one of them, not both");
+  /* Checked here as well as in AdhSurfaceGenerate: a given value must not pass as PETSC_DEFAULT. */
+  PetscCheck(!seth || (s->rms_height > 0 && PetscIsNormalReal(s->rms_height)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_height must be positive and finite, got %g", (double)s->rms_height);
+  PetscCheck(!sets || (s->rms_slope > 0 && PetscIsNormalReal(s->rms_slope)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_slope must be positive and finite, got %g", (double)s->rms_slope);
+  PetscFunctionReturn(0);
+}
+
+/* The defaults that need the grid, and every range check, naming the option. */
+static PetscErrorCode Resolve(AdhGrid grid, AdhSurface *s, PetscReal *lr, PetscReal *lc)
+{
+  const PetscReal L = PetscMax(grid->Lx, grid->Ly), h = PetscMax(grid->hx, grid->hy);
+  const PetscBool seth = (PetscBool)(s->rms_height != PETSC_DEFAULT), sets = (PetscBool)(s->rms_slope != PETSC_DEFAULT);
+
+  PetscFunctionBegin;
+  PetscCheck(s->hurst > 0 && s->hurst <= 1, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_hurst: the Hurst exponent must lie in (0, 1], got %g", (double)s->hurst);
+  PetscCheck(!(seth && sets), grid->comm, PETSC_ERR_ARG_INCOMP, "-adh_rms_height and -adh_rms_slope: give one of them, not both");
+  PetscCheck(!seth || (s->rms_height > 0 && PetscIsNormalReal(s->rms_height)), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_height must be positive and finite, got %g", (double)s->rms_height);
+  PetscCheck(!sets || (s->rms_slope > 0 && PetscIsNormalReal(s->rms_slope)), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_slope must be positive and finite, got %g", (double)s->rms_slope);
+  *lc = s->cutoff_wavelength == PETSC_DEFAULT ? PetscMin(4.0 * h, L) : s->cutoff_wavelength;
+  PetscCheck(*lc >= 2.0 * h * (1.0 - RANGE_RTOL) && *lc <= L * (1.0 + RANGE_RTOL), grid->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-adh_cutoff_wavelength must lie in [2 max(hx,hy), max(Lx,Ly)] = [%g, %g] (from 2 grid spacings, the Nyquist wavelength, to the cell size), got %g", (double)(2.0 * h), (double)L, (double)*lc);
+  *lr = s->rolloff_wavelength == PETSC_DEFAULT ? L : s->rolloff_wavelength;
+  PetscCheck(*lr >= *lc * (1.0 - RANGE_RTOL) && *lr <= L * (1.0 + RANGE_RTOL), grid->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-adh_rolloff_wavelength must lie in [cut-off, max(Lx,Ly)] = [%g, %g] (not shorter than -adh_cutoff_wavelength, not longer than the cell), got %g", (double)*lc, (double)L, (double)*lr);
+  PetscFunctionReturn(0);
+}
+
+/* Sums over the global index range [0, n) whose entries [start, start+count) this rank formed:
+   every entry has one owner, so the MPI sum is exact, and all ranks add them in global order. */
+static PetscErrorCode OrderedSum(MPI_Comm comm, PetscInt n, PetscInt nsums, PetscReal *parts, PetscReal *total)
+{
+  PetscInt k, m;
+
+  PetscFunctionBegin;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, parts, (PetscMPIInt)(n * nsums), MPIU_REAL, MPIU_SUM, comm));
+  for (m = 0; m < nsums; m++) {
+    total[m] = 0.0;
+    for (k = 0; k < n; k++) total[m] += parts[k * nsums + m];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Fills this rank's kx columns with the coefficients times the spectrum's amplitude and forms
+   the per-column sums of |z_q|^2 and q^2 |z_q|^2 over the full spectrum (Hermitian weights). */
+static void FillSpectrum(AdhGrid grid, const AdhSurface *s, PetscReal lr, PetscReal lc, ptrdiff_t nkx, ptrdiff_t kx0, fftw_complex *spec, PetscReal *colsums, PetscInt *modes)
+{
+  const PetscInt  Nx = grid->Nx, Ny = grid->Ny;
+  const PetscReal fr = 1.0 / lr, fs2 = 1.0 / (lc * lc) * (1.0 + EDGE_RTOL), e = -(1.0 + s->hurst);
+  ptrdiff_t       a;
+  PetscInt        k0;
+
+  for (a = 0; a < nkx; a++) {
+    const PetscInt  kx        = (PetscInt)(kx0 + a);
+    const PetscBool hermitian = (PetscBool)(kx == 0 || 2 * kx == Nx); /* columns whose -kx is not stored */
+    const PetscReal w         = hermitian ? 1.0 : 2.0;                /* the -kx half mirrors the others */
+    PetscReal       sh = 0.0, ss = 0.0;
+
+    for (k0 = 0; k0 < Ny; k0++) {
+      const PetscInt  ky = k0 <= Ny / 2 ? k0 : k0 - Ny;
+      const PetscReal fx = kx / grid->Lx, fy = ky / grid->Ly, f2 = fx * fx + fy * fy; /* cycles per length */
+      double          re = 0.0, im = 0.0;
+
+      if (f2 > 0 && f2 <= fs2) {
+        const PetscReal amp = PetscPowReal(PetscMax(PetscSqrtReal(f2), fr) / fr, e); /* sqrt(C(q)/C(q_r)) */
+        if (hermitian && (ky == 0 || 2 * ky == Ny)) { /* self-conjugate: real, variance 1 */
+          ModeGaussian(s->seed, kx, ky, &re, &im);
+          re *= PETSC_SQRT2;
+          im = 0.0;
+        } else if (hermitian && ky < 0) { /* the conjugate of the +ky coefficient */
+          ModeGaussian(s->seed, kx, -ky, &re, &im);
+          im = -im;
+        } else ModeGaussian(s->seed, kx, ky, &re, &im);
+        re *= amp;
+        im *= amp;
+        sh += w * (re * re + im * im);
+        ss += w * (re * re + im * im) * (4.0 * PETSC_PI * PETSC_PI * f2);
+        *modes += hermitian ? 1 : 2;
+      }
+      spec[a * Ny + k0][0] = re;
+      spec[a * Ny + k0][1] = im;
+    }
+    colsums[2 * (kx0 + a)]     = sh;
+    colsums[2 * (kx0 + a) + 1] = ss;
+  }
+}
+
+/* Per-column sums of the (scaled) coefficients, as FillSpectrum forms them. */
+static void ColumnSums(AdhGrid grid, ptrdiff_t nkx, ptrdiff_t kx0, const fftw_complex *spec, PetscReal *colsums)
+{
+  const PetscInt Nx = grid->Nx, Ny = grid->Ny;
+  ptrdiff_t      a;
+  PetscInt       k0;
+
+  for (a = 0; a < nkx; a++) {
+    const PetscInt  kx = (PetscInt)(kx0 + a);
+    const PetscReal w  = (kx == 0 || 2 * kx == Nx) ? 1.0 : 2.0;
+    PetscReal       sh = 0.0, ss = 0.0;
+    for (k0 = 0; k0 < Ny; k0++) {
+      const PetscInt  ky = k0 <= Ny / 2 ? k0 : k0 - Ny;
+      const PetscReal fx = kx / grid->Lx, fy = ky / grid->Ly, f2 = fx * fx + fy * fy;
+      const double    p  = spec[a * Ny + k0][0] * spec[a * Ny + k0][0] + spec[a * Ny + k0][1] * spec[a * Ny + k0][1];
+      sh += w * p;
+      ss += w * p * (4.0 * PETSC_PI * PETSC_PI * f2);
+    }
+    colsums[2 * (kx0 + a)]     = sh;
+    colsums[2 * (kx0 + a) + 1] = ss;
+  }
+}
+
+PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
+{
+  PetscInt     Nx, Ny, n1c, N, modes = 0, k, r;
+  PetscReal    lr, lc, *sums, tot[2], scale, zmin = PETSC_MAX_REAL, zmax = PETSC_MIN_REAL;
+  ptrdiff_t    nn[2], alloc, nkx, kx0, ny, y0;
+  double      *data;
+  fftw_complex *spec;
+  fftw_plan    column, transpose, row;
+  char        *wisdom;
+  Vec          zf;
+  IS           is;
+  VecScatter   toGrid;
+  PetscBool    ok;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(AdhGridSetUp(grid));
+  PetscCall(Resolve(grid, s, &lr, &lc));
+  Nx = grid->Nx; Ny = grid->Ny; n1c = Nx / 2 + 1; N = Nx * Ny;
+  PetscCall(VecGetSize(z, &k));
+  PetscCheck(k == N, grid->comm, PETSC_ERR_ARG_SIZ, "The height Vec has %" PetscInt_FMT " entries; the grid has %" PetscInt_FMT, k, N);
+
+  /* One array: kx columns of Ny complex (FFTW's transposed layout), then after the transpose
+     y rows of n1c complex, in which each row's c2r transform leaves its Nx heights. */
+  nn[0] = n1c; nn[1] = Ny;
+  alloc = fftw_mpi_local_size_many_transposed(2, nn, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, grid->comm, &nkx, &kx0, &ny, &y0);
+  data  = fftw_alloc_real(PetscMax(alloc, 2));
+  PetscCheck(data, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td doubles", alloc);
+  spec = (fftw_complex *)data;
+
+  wisdom = fftw_export_wisdom_to_string();
+  fftw_forget_wisdom();
+  column    = fftw_plan_dft_1d((int)Ny, spec, spec, FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_UNALIGNED);
+  row       = fftw_plan_dft_c2r_1d((int)Nx, spec, data, FFTW_ESTIMATE | FFTW_UNALIGNED);
+  transpose = fftw_mpi_plan_many_transpose(n1c, Ny, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, data, data, grid->comm, FFTW_ESTIMATE);
+  fftw_forget_wisdom();
+  if (wisdom) {
+    (void)fftw_import_wisdom_from_string(wisdom);
+    free(wisdom); /* FFTW allocates it with malloc */
+  }
+  PetscCheck(column && row && transpose, grid->comm, PETSC_ERR_LIB, "FFTW could not plan the %" PetscInt_FMT " x %" PetscInt_FMT " surface transform", Nx, Ny);
+
+  /* Spectrum and its sums; the scale that makes the requested statistic exact (Parseval:
+     mean z^2 = sum |z_q|^2 and mean |grad z|^2 = sum q^2 |z_q|^2 for z = sum z_q e^{iqx}). */
+  PetscCall(PetscCalloc1(2 * n1c, &sums));
+  FillSpectrum(grid, s, lr, lc, nkx, kx0, spec, sums, &modes);
+  PetscCall(OrderedSum(grid->comm, n1c, 2, sums, tot));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &modes, 1, MPIU_INT, MPI_SUM, grid->comm));
+  ok = (PetscBool)(tot[0] > 0 && tot[1] > 0);
+  if (ok) {
+    if (s->rms_height != PETSC_DEFAULT) scale = s->rms_height / PetscSqrtReal(tot[0]);
+    else scale = (s->rms_slope != PETSC_DEFAULT ? s->rms_slope : 0.1) / PetscSqrtReal(tot[1]);
+    for (k = 0; k < (PetscInt)(nkx * Ny); k++) {
+      spec[k][0] *= scale;
+      spec[k][1] *= scale;
+    }
+    PetscCall(PetscArrayzero(sums, 2 * n1c));
+    ColumnSums(grid, nkx, kx0, spec, sums);
+    PetscCall(OrderedSum(grid->comm, n1c, 2, sums, tot));
+    s->realised_rms_slope = PetscSqrtReal(tot[1]);
+  }
+  PetscCall(PetscFree(sums));
+  if (!ok) {
+    fftw_destroy_plan(column); fftw_destroy_plan(row); fftw_destroy_plan(transpose);
+    fftw_free(data);
+    SETERRQ(grid->comm, PETSC_ERR_PLIB, "The surface spectrum is empty (cut-off %g on a %g x %g cell)", (double)lc, (double)grid->Lx, (double)grid->Ly);
+  }
+
+  /* The inverse transform: columns, transpose, rows; then the rows packed to Nx values each. */
+  PetscCall(PetscLogEventBegin(ADH_FFTBackward, 0, 0, 0, 0));
+  for (k = 0; k < (PetscInt)nkx; k++) fftw_execute_dft(column, spec + k * Ny, spec + k * Ny);
+  fftw_execute(transpose);
+  for (r = 0; r < (PetscInt)ny; r++) fftw_execute_dft_c2r(row, spec + r * n1c, data + 2 * r * n1c);
+  PetscCall(PetscLogEventEnd(ADH_FFTBackward, 0, 0, 0, 0));
+  for (r = 0; r < (PetscInt)ny; r++) memmove(data + r * Nx, data + 2 * r * n1c, (size_t)Nx * sizeof(double));
+  fftw_destroy_plan(column); fftw_destroy_plan(row); fftw_destroy_plan(transpose);
+
+  /* Realised statistics from the heights, per row in order, rows added in global order. */
+  PetscCall(PetscCalloc1(2 * Ny, &sums));
+  for (r = 0; r < (PetscInt)ny; r++) {
+    PetscReal s1 = 0.0, s2 = 0.0;
+    for (k = 0; k < Nx; k++) {
+      const PetscReal v = data[r * Nx + k];
+      s1 += v;
+      s2 += v * v;
+      zmin = PetscMin(zmin, v);
+      zmax = PetscMax(zmax, v);
+    }
+    sums[2 * (y0 + r)]     = s1;
+    sums[2 * (y0 + r) + 1] = s2;
+  }
+  PetscCall(OrderedSum(grid->comm, Ny, 2, sums, tot));
+  PetscCall(PetscFree(sums));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &zmin, 1, MPIU_REAL, MPIU_MIN, grid->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &zmax, 1, MPIU_REAL, MPIU_MAX, grid->comm));
+  s->realised_mean           = tot[0] / N;
+  s->realised_rms_height     = PetscSqrtReal(tot[1] / N);
+  s->min_height              = zmin;
+  s->max_height              = zmax;
+  s->modes                   = modes;
+  s->used_rolloff_wavelength = lr;
+  s->used_cutoff_wavelength  = lc;
+  s->generated               = PETSC_TRUE;
+
+  /* FFTW's rows are not the grid's balanced rows: one scatter moves them (same global order). */
+  PetscCall(VecCreateMPIWithArray(grid->comm, 1, (PetscInt)ny * Nx, N, data, &zf));
+  PetscCall(ISCreateStride(grid->comm, (PetscInt)ny * Nx, (PetscInt)y0 * Nx, 1, &is));
+  PetscCall(VecScatterCreate(zf, is, z, is, &toGrid));
+  PetscCall(VecScatterBegin(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterDestroy(&toGrid));
+  PetscCall(ISDestroy(&is));
+  PetscCall(VecDestroy(&zf));
+  fftw_free(data);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSurfaceView(const AdhSurface *s, PetscViewer viewer)
+{
+  PetscBool isascii;
+
+  PetscFunctionBegin;
+  if (!viewer) viewer = PETSC_VIEWER_STDOUT_WORLD;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Rough surface: self-affine Gaussian, Hurst %g, seed %" PetscInt_FMT "\n", (double)s->hurst, s->seed));
+  if (s->rms_height != PETSC_DEFAULT) PetscCall(PetscViewerASCIIPrintf(viewer, "  requested rms height %g\n", (double)s->rms_height));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  requested rms slope %g (spectral)\n", (double)(s->rms_slope != PETSC_DEFAULT ? s->rms_slope : 0.1)));
+  if (s->generated) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  roll-off wavelength %g, cut-off wavelength %g, %" PetscInt_FMT " Fourier modes\n", (double)s->used_rolloff_wavelength, (double)s->used_cutoff_wavelength, s->modes));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  realised: rms height %.15g, rms slope %.15g (spectral), mean %g, heights in [%g, %g]\n", (double)s->realised_rms_height, (double)s->realised_rms_slope, (double)s->realised_mean, (double)s->min_height, (double)s->max_height));
+  } else {
+    char lr[32] = "the cell size", lc[32] = "4 grid spacings";
+    if (s->rolloff_wavelength != PETSC_DEFAULT) PetscCall(PetscSNPrintf(lr, sizeof(lr), "%g", (double)s->rolloff_wavelength));
+    if (s->cutoff_wavelength != PETSC_DEFAULT) PetscCall(PetscSNPrintf(lc, sizeof(lc), "%g", (double)s->cutoff_wavelength));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  roll-off wavelength %s, cut-off wavelength %s (not generated yet)\n", lr, lc));
+  }
+  PetscFunctionReturn(0);
+}

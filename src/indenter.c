@@ -3,7 +3,7 @@
 #include <petscviewerhdf5.h>
 #include "indenter.h"
 
-const char *const AdhIndenterTypes[] = {"sphere", "punch", "cone", "file", "AdhIndenterType", "ADH_INDENTER_", NULL};
+const char *const AdhIndenterTypes[] = {"sphere", "punch", "cone", "file", "rough", "AdhIndenterType", "ADH_INDENTER_", NULL};
 
 /* Reads rows [ys, ys+ym) of a C-ordered (Ny, Nx) float64 or float32 .npy array. */
 static PetscErrorCode LoadNpy(AdhGrid grid, const char *path, PetscScalar *rows, PetscInt ys, PetscInt ym)
@@ -103,7 +103,7 @@ static PetscErrorCode LoadHDF5(AdhGrid grid, const char *path, const char *datas
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhIndenterFill(AdhGrid grid, const AdhIndenter *ind, Vec h)
+PetscErrorCode AdhIndenterFill(AdhGrid grid, AdhIndenter *ind, Vec h)
 {
   PetscScalar *ha;
   PetscInt     ys, ym, i, j;
@@ -126,6 +126,11 @@ PetscErrorCode AdhIndenterFill(AdhGrid grid, const AdhIndenter *ind, Vec h)
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ierr, 1, MPI_INT, MPI_MAX, grid->comm));
       PetscCall(ierr);
     } else PetscCall(LoadHDF5(grid, ind->topography, ind->dataset, h));
+  } else if (ind->type == ADH_INDENTER_ROUGH) {
+    /* heights z, touched first at the highest peak: h = max(z) - z */
+    PetscCall(AdhSurfaceGenerate(grid, &ind->surface, h));
+    PetscCall(VecScale(h, -1.0));
+    PetscCall(VecShift(h, ind->surface.max_height));
   } else {
     PetscCall(VecGetArray(h, &ha));
     for (j = ys; j < ys + ym; j++)
@@ -167,6 +172,7 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscCall(PetscOptionsString("-adh_topography", "Topography file for -adh_indenter file: .npy (Ny, Nx) float64, or HDF5", "AdhSolver", ind->topography, ind->topography, sizeof(ind->topography), NULL));
   PetscCall(PetscOptionsString("-adh_topography_dataset", "Dataset name inside an HDF5 topography file", "AdhSolver", ind->dataset, ind->dataset, sizeof(ind->dataset), NULL));
   PetscOptionsEnd();
+  if (ind->type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceSetFromOptions(comm, prefix, &ind->surface));
   PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive, got %g", (double)ind->radius);
   PetscCheck(ind->type != ADH_INDENTER_PUNCH || ind->punch_radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive, got %g", (double)ind->punch_radius);
   PetscCheck(ind->type != ADH_INDENTER_CONE || ind->cone_slope > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive, got %g", (double)ind->cone_slope);

@@ -2,8 +2,9 @@
 #ifndef ADHBEM_INDENTER_H
 #define ADHBEM_INDENTER_H
 #include "adhbem.h"
+#include "surface.h"
 
-typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE } AdhIndenterType;
+typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH } AdhIndenterType;
 PETSC_EXTERN const char *const AdhIndenterTypes[];
 
 typedef struct {
@@ -13,8 +14,11 @@ typedef struct {
   PetscReal       cone_slope;   /* cone */
   char            topography[PETSC_MAX_PATH_LEN];
   char            dataset[256];
+  AdhSurface      surface;      /* rough: the random surface's parameters and realised statistics */
 } AdhIndenter;
 
 PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhIndenter *);
-PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, const AdhIndenter *, Vec h);
+/* The profile h on the grid; a rough indenter's surface is generated here (its statistics are
+   recorded in the indenter). */
+PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, AdhIndenter *, Vec h);
 #endif

@@ -112,6 +112,33 @@ static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char
   PetscFunctionReturn(0);
 }
 
+/* A rough indenter's parameters and realised statistics as root attributes, and its heights z
+   (h = max z - z) as the dataset /topography, which -adh_indenter file reads back. */
+static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
+{
+  const AdhSurface *sf = &s->indenter.surface;
+  Vec               z;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hurst", PETSC_REAL, &sf->hurst));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "rolloff_wavelength", PETSC_REAL, &sf->used_rolloff_wavelength));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cutoff_wavelength", PETSC_REAL, &sf->used_cutoff_wavelength));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "seed", PETSC_INT, &sf->seed));
+  if (sf->rms_height > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "rms_height", PETSC_REAL, &sf->rms_height));
+  else PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "rms_slope", PETSC_REAL, &sf->realised_rms_slope));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "realised_rms_height", PETSC_REAL, &sf->realised_rms_height));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "realised_rms_slope", PETSC_REAL, &sf->realised_rms_slope));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "max_height", PETSC_REAL, &sf->max_height));
+  PetscCall(VecDuplicate(s->h, &z));
+  PetscCall(VecCopy(s->h, z));
+  PetscCall(VecScale(z, -1.0));
+  PetscCall(VecShift(z, sf->max_height));
+  PetscCall(PetscObjectSetName((PetscObject)z, "topography"));
+  PetscCall(VecView(z, v));
+  PetscCall(VecDestroy(&z));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
 {
   const AdhGrid g = s->grid;
@@ -154,6 +181,7 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   case ADH_INDENTER_PUNCH: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "punch_radius", PETSC_REAL, &s->indenter.punch_radius)); break;
   case ADH_INDENTER_CONE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cone_slope", PETSC_REAL, &s->indenter.cone_slope)); break;
   case ADH_INDENTER_FILE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography", PETSC_STRING, s->indenter.topography)); break;
+  case ADH_INDENTER_ROUGH: PetscCall(WriteSurface(s, v)); break;
   }
   PetscFunctionReturn(0);
 }

@@ -3,7 +3,7 @@
 #define ADHBEM_INDENTER_H
 #include "adhbem.h"
 
-typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE } AdhIndenterType;
+typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ARRAY } AdhIndenterType;
 PETSC_EXTERN const char *const AdhIndenterTypes[];
 
 typedef struct {
@@ -11,8 +11,10 @@ typedef struct {
   PetscReal       radius;       /* sphere */
   PetscReal       punch_radius; /* punch */
   PetscReal       cone_slope;   /* cone */
-  char            topography[PETSC_MAX_PATH_LEN];
+  char            topography[PETSC_MAX_PATH_LEN]; /* file */
   char            dataset[256];
+  AdhTopographyKind kind;       /* file and array: height z or gap h */
+  Vec             z;            /* array: the user's topography (a reference) */
 } AdhIndenter;
 
 PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhIndenter *);

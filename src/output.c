@@ -142,6 +142,7 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "E_star", PETSC_REAL, &s->Estar));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma", PETSC_REAL, &s->gamma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field", PETSC_BOOL, s->gamma_field ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
+  if (s->gamma_field && s->gamma_file[0]) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_file", PETSC_STRING, s->gamma_file));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Sigma", PETSC_REAL, &s->Sigma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress_fixed", PETSC_BOOL, s->sigma_fixed > 0 ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
@@ -162,7 +163,9 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   case ADH_INDENTER_PUNCH: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "punch_radius", PETSC_REAL, &s->indenter.punch_radius)); break;
   case ADH_INDENTER_CONE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cone_slope", PETSC_REAL, &s->indenter.cone_slope)); break;
   case ADH_INDENTER_FILE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography", PETSC_STRING, s->indenter.topography)); break;
+  case ADH_INDENTER_ARRAY: break;
   }
+  if (s->indenter.type == ADH_INDENTER_FILE || s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography_kind", PETSC_STRING, AdhTopographyKinds[s->indenter.kind]));
   PetscFunctionReturn(0);
 }
 

@@ -322,6 +322,7 @@ def test_executable_with_good_files(root, tmp):
 # ---- ranks --------------------------------------------------------------------------------------
 
 @pytest.mark.mpi
+@pytest.mark.ranks3
 def test_topography_file_on_ranks_is_the_same_curve(tmp):
     """A height map and a gamma field read on all ranks give the curve of one rank."""
     z = height_map() + 1e-4 * np.cos(7 * np.arange(N))[None, :]   # not symmetric in x

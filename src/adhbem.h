@@ -50,6 +50,15 @@ PETSC_EXTERN PetscErrorCode AdhGridGetOwnership(AdhGrid, PetscInt *ys, PetscInt 
 /* Centre of element (i,j): x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy (DESIGN.md section 8). */
 PETSC_EXTERN PetscErrorCode AdhGridGetCoordinates(AdhGrid, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y);
 
+/* ---- fieldfile.c: fields on the grid given by the user (topographies, dgamma maps) ---- */
+
+/* Reads a (Ny, Nx) field into v, a Vec on the grid: a C-ordered float64/float32 .npy array,
+   or the 2-D float dataset `dataset` of an HDF5 file. Collective: checks that the file exists,
+   its shape, dtype, and that every value is finite; errors name `option` and the file. */
+PETSC_EXTERN PetscErrorCode AdhFieldLoad(AdhGrid, const char option[], const char path[], const char dataset[], Vec v);
+/* Collective check that v has the grid's row layout and finite values; errors name `what`. */
+PETSC_EXTERN PetscErrorCode AdhFieldCheck(AdhGrid, const char what[], Vec v);
+
 /* ---- material.c: the reduced modulus ---- */
 
 /* E* from -adh_E_star, or from -adh_E1 -adh_nu1 -adh_E2 -adh_nu2; errors name the option. */
@@ -130,6 +139,15 @@ PETSC_EXTERN PetscErrorCode AdhSolverSetControlType(AdhSolver, AdhControlType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetControlType(AdhSolver, AdhControlType *);
 /* Replaces the scalar work of adhesion by a field dgamma(x,y) (a Vec on the grid). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver, Vec);
+/* What a topography holds: the height z of the surface, as instruments, SurfaceTopography and
+   Tamaas give it (the profile is h = max(z) - z: the highest peak touches at d = 0), or the gap
+   h itself. */
+typedef enum { ADH_TOPOGRAPHY_HEIGHT, ADH_TOPOGRAPHY_GAP } AdhTopographyKind;
+PETSC_EXTERN const char *const AdhTopographyKinds[];
+/* The indenter becomes the user's profile z (a Vec on the grid, indenter type "array"). Before
+   set-up it is kept for set-up; after set-up the profile is replaced at once and the contact
+   state is cleared (start again with AdhSolverStart or AdhSolverSolvePath). */
+PETSC_EXTERN PetscErrorCode AdhSolverSetTopography(AdhSolver, Vec z, AdhTopographyKind);
 /* Starting state at the path's first value (an indentation d, or a force under force control):
    hertz or adhesive (loaded from first touch). */
 PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);

@@ -4,7 +4,7 @@
 #include "adhbem.h"
 #include "surface.h"
 
-typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH } AdhIndenterType;
+typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH, ADH_INDENTER_ARRAY } AdhIndenterType;
 PETSC_EXTERN const char *const AdhIndenterTypes[];
 
 typedef struct {
@@ -12,9 +12,11 @@ typedef struct {
   PetscReal       radius;       /* sphere */
   PetscReal       punch_radius; /* punch */
   PetscReal       cone_slope;   /* cone */
-  char            topography[PETSC_MAX_PATH_LEN];
+  char            topography[PETSC_MAX_PATH_LEN]; /* file */
   char            dataset[256];
   AdhSurface      surface;      /* rough: the random surface's parameters and realised statistics */
+  AdhTopographyKind kind;       /* file and array: height z or gap h */
+  Vec             z;            /* array: the user's topography (a reference) */
 } AdhIndenter;
 
 PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhIndenter *);

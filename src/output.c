@@ -116,7 +116,7 @@ static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char
    (h = max z - z) as the dataset /topography, which -adh_indenter file reads back. */
 static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
 {
-  const AdhSurface *sf = &s->indenter.surface;
+  AdhSurface *sf = &s->indenter.surface;
   Vec               z;
 
   PetscFunctionBegin;
@@ -129,10 +129,9 @@ static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "realised_rms_height", PETSC_REAL, &sf->realised_rms_height));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "realised_rms_slope", PETSC_REAL, &sf->realised_rms_slope));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "max_height", PETSC_REAL, &sf->max_height));
+  /* generated again rather than kept through the run: the same bits, one FFT, no memory */
   PetscCall(VecDuplicate(s->h, &z));
-  PetscCall(VecCopy(s->h, z));
-  PetscCall(VecScale(z, -1.0));
-  PetscCall(VecShift(z, sf->max_height));
+  PetscCall(AdhSurfaceGenerate(s->grid, sf, z));
   PetscCall(PetscObjectSetName((PetscObject)z, "topography"));
   PetscCall(VecView(z, v));
   PetscCall(VecDestroy(&z));
@@ -159,6 +158,7 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "E_star", PETSC_REAL, &s->Estar));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma", PETSC_REAL, &s->gamma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field", PETSC_BOOL, s->gamma_field ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
+  if (s->gamma_field && s->gamma_file[0]) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_file", PETSC_STRING, s->gamma_file));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Sigma", PETSC_REAL, &s->Sigma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress_fixed", PETSC_BOOL, s->sigma_fixed > 0 ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
@@ -182,7 +182,9 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   case ADH_INDENTER_CONE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cone_slope", PETSC_REAL, &s->indenter.cone_slope)); break;
   case ADH_INDENTER_FILE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography", PETSC_STRING, s->indenter.topography)); break;
   case ADH_INDENTER_ROUGH: PetscCall(WriteSurface(s, v)); break;
+  case ADH_INDENTER_ARRAY: break;
   }
+  if (s->indenter.type == ADH_INDENTER_FILE || s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography_kind", PETSC_STRING, AdhTopographyKinds[s->indenter.kind]));
   PetscFunctionReturn(0);
 }
 

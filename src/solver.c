@@ -21,6 +21,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->indenter.punch_radius = 0.25;
   s->indenter.cone_slope   = 0.1;
   PetscCall(PetscStrncpy(s->indenter.dataset, "h", sizeof(s->indenter.dataset)));
+  PetscCall(PetscStrncpy(s->gamma_dataset, "gamma", sizeof(s->gamma_dataset)));
   s->start     = ADH_START_HERTZ;
   s->steps     = 10;
   s->max_outer = 100000;
@@ -64,6 +65,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
   PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesive contact solver", "AdhSolver");
   PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
+  PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
+  PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, NULL));
   PetscCall(AdhControlGetList_Private(&controls));
@@ -104,12 +107,34 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
   PetscReal min;
 
   PetscFunctionBegin;
+  if (s->setup) PetscCall(AdhFieldCheck(s->grid, "work of adhesion field", gamma));
   PetscCall(VecMin(gamma, NULL, &min));
   PetscCheck(min >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The work of adhesion field must be >= 0 everywhere, its minimum is %g", (double)min);
   PetscCall(PetscObjectReference((PetscObject)gamma));
   PetscCall(VecDestroy(&s->gamma_field));
   s->gamma_field = gamma;
+  s->gamma_file[0] = 0; /* this field replaces one read from -adh_gamma_field */
   if (s->setup) PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
+  PetscFunctionReturn(0);
+}
+
+/* -adh_gamma_field: dgamma(x,y) from a file, checked like a topography and for dgamma >= 0. */
+static PetscErrorCode LoadWorkOfAdhesionField(AdhSolver s)
+{
+  Vec            v;
+  PetscReal      min;
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(s->h, &v));
+  PetscCall(PetscObjectSetName((PetscObject)v, "gamma_field"));
+  ierr = AdhFieldLoad(s->grid, "-adh_gamma_field", s->gamma_file, s->gamma_dataset, v);
+  if (ierr) PetscCall(VecDestroy(&v));
+  PetscCall(ierr);
+  PetscCall(VecMin(v, NULL, &min));
+  if (min < 0) PetscCall(VecDestroy(&v));
+  PetscCheck(min >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma_field: %s holds negative values (minimum %g); the work of adhesion must be >= 0", s->gamma_file, (double)min);
+  s->gamma_field = v;
   PetscFunctionReturn(0);
 }
 
@@ -167,6 +192,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(VecSet(s->zero, 0.0));
     PetscCall(VecSet(s->p, 0.0));
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
+    if (s->gamma_file[0] && !s->gamma_field) PetscCall(LoadWorkOfAdhesionField(s));
     {
       PetscScalar sum;
       PetscCall(VecSum(s->h, &sum));
@@ -293,6 +319,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(VecDestroy(&s->g));
   PetscCall(VecDestroy(&s->zero));
   PetscCall(VecDestroy(&s->gamma_field));
+  PetscCall(VecDestroy(&s->indenter.z));
   PetscCall(PetscFree(s->in_set));
   PetscCall(PetscFree(s->left));
   PetscCall(PetscFree(s->path));

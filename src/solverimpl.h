@@ -41,6 +41,8 @@ struct _n_AdhSolver {
   PetscReal   sigma_fixed;    /* > 0: a mesh-independent critical stress replaces Pohrt-Popov's */
   PetscReal   Sigma;          /* critical stress of the scalar dgamma (for reports) */
   Vec         gamma_field;    /* optional dgamma(x,y) */
+  char        gamma_file[PETSC_MAX_PATH_LEN]; /* -adh_gamma_field: dgamma(x,y) read at set-up */
+  char        gamma_dataset[256];
 
   /* operators and fields on the grid */
   Mat       K;                /* compliance */

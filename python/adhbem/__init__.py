@@ -5,6 +5,7 @@ The objects this package hands out are real petsc4py objects: the half-space com
 layout. Grids are distributed by whole rows: each rank holds rows ``j`` in ``row_range(K)`` and
 all ``Nx`` points of each, so a local array has shape ``(rows, Nx)`` and index ``[j - j0, i]``.
 """
+import os
 import sys
 
 import petsc4py
@@ -167,11 +168,45 @@ class Solver:
     KSP options go the same way (``ksp_rtol=1e-12``). They are stored under a prefix of this
     solver's own, so two solvers do not see each other's options.
 
+    A topography or a work-of-adhesion field is a file name (the options ``topography``,
+    ``gamma_field``), or a NumPy array of shape (Ny, Nx) (every rank passes the whole array), or
+    a Vec on the grid: ``Solver(n=(Nx, Ny), topography=z, topography_kind="height",
+    gamma_field=g)``. A height map z gives the profile h = max(z) - z (the highest peak touches
+    at d = 0); ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the
+    indenter "array".
+
     After ``solve_path()`` (or ``start(d)`` / ``step(d)``), ``curve()`` gives NumPy arrays and
     ``pressure``, ``displacement``, ``gap``, ``contact_set``, ``compliance`` are petsc4py objects.
     """
 
-    def __init__(self, comm=None, **options):
+    def __init__(self, comm=None, topography=None, topography_kind=None, gamma_field=None, **options):
+        self._keys = []
+        # File names are options read at set-up; arrays and Vecs are handed over after it.
+        if topography_kind is not None:
+            if topography_kind not in ("height", "gap"):
+                raise ValueError(f"topography_kind: 'height' or 'gap', got {topography_kind!r}")
+            options["topography_kind"] = topography_kind
+        if isinstance(topography, (str, os.PathLike)):
+            options["topography"] = os.fspath(topography)
+            topography = None
+        elif topography is not None:
+            indenter = options.pop("indenter", "array")
+            if indenter != "array":
+                raise ValueError(f"topography: an array or Vec is the indenter; indenter={indenter!r} conflicts with it")
+        if isinstance(gamma_field, (str, os.PathLike)):
+            options["gamma_field"] = os.fspath(gamma_field)
+            gamma_field = None
+        self._init(comm, options)
+        try:
+            if topography is not None:
+                self.set_topography(topography, topography_kind or "height")
+            if gamma_field is not None:
+                self.set_gamma_field(gamma_field)
+        except BaseException:
+            self._forget_options()
+            raise
+
+    def _init(self, comm, options):
         global _solver_count
         _solver_count += 1
         self.prefix = f"adhbem{_solver_count}_"
@@ -234,8 +269,34 @@ class Solver:
         _adhbem.solver_view(self._s)
 
     def set_gamma_field(self, vec):
-        """Work of adhesion as a field dgamma(x,y): a Vec on the grid (see make_field)."""
+        """Work of adhesion as a field dgamma(x,y): a Vec on the grid (see make_field), or an
+        (Ny, Nx) NumPy array. It replaces the scalar gamma in Sigma."""
+        if not isinstance(vec, PETSc.Vec):
+            vec = self._field_from_array("gamma_field", vec, nonnegative=True)
         _adhbem.solver_set_gamma_field(self._s, vec)
+
+    def set_topography(self, topography, kind="height"):
+        """The indenter becomes this topography (indenter "array"): an (Ny, Nx) NumPy array or a
+        Vec on the grid, holding heights z (kind "height": h = max(z) - z) or the gap h ("gap").
+        Clears the contact state; the next start() or solve_path() begins from it."""
+        if not isinstance(topography, PETSc.Vec):
+            topography = self._field_from_array("topography", topography)
+        _adhbem.solver_set_topography(self._s, topography, str(kind))
+
+    def _field_from_array(self, name, array, nonnegative=False):
+        import numpy as np
+        Nx, Ny = grid_shape(self.compliance)
+        try:
+            a = np.asarray(array, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{name}: expected a NumPy array of shape (Ny, Nx) = {(Ny, Nx)} or a PETSc.Vec ({e})") from None
+        if a.shape != (Ny, Nx):
+            raise ValueError(f"{name}: expected shape (Ny, Nx) = {(Ny, Nx)}, got {a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"{name}: holds NaN or Inf values")
+        if nonnegative and np.any(a < 0):
+            raise ValueError(f"{name}: the work of adhesion must be >= 0, the minimum is {a.min()!r}")
+        return self.make_field(a)
 
     def make_field(self, array=None):
         """A new Vec on the grid, optionally set from a (rows, Nx) or (Ny, Nx) array."""

@@ -254,6 +254,27 @@ static PyObject *py_solver_set_gamma_field(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
+static PyObject *py_solver_set_topography(PyObject *self, PyObject *args)
+{
+  PyObject         *cap, *pyvec;
+  const char       *kname;
+  Vec               v;
+  AdhTopographyKind kind = ADH_TOPOGRAPHY_HEIGHT;
+  PetscBool         found = PETSC_FALSE;
+
+  if (!PyArg_ParseTuple(args, "OOs", &cap, &pyvec, &kname)) return NULL;
+  for (int k = 0; k < 2; k++)
+    if (!strcmp(kname, AdhTopographyKinds[k])) { found = PETSC_TRUE; kind = (AdhTopographyKind)k; }
+  if (!found) {
+    PyErr_Format(PyExc_ValueError, "topography_kind: '%s' is not height or gap", kname);
+    return NULL;
+  }
+  v = PyPetscVec_Get(pyvec);
+  if (!v) return NULL;
+  PyPetscCall(AdhSolverSetTopography(solver_get(cap), v, kind));
+  Py_RETURN_NONE;
+}
+
 static PyObject *py_solver_write(PyObject *self, PyObject *args)
 {
   PyObject   *cap;
@@ -281,6 +302,7 @@ static PyMethodDef methods[] = {
   {"solver_objects", py_solver_objects, METH_VARARGS, "solver_objects(s) -> dict of petsc4py objects"},
   {"solver_critical_stress", py_solver_sigma, METH_VARARGS, "solver_critical_stress(s) -> Sigma"},
   {"solver_set_gamma_field", py_solver_set_gamma_field, METH_VARARGS, "solver_set_gamma_field(s, vec)"},
+  {"solver_set_topography", py_solver_set_topography, METH_VARARGS, "solver_set_topography(s, vec, kind): indenter profile from a height map or gap (kind 'height' or 'gap')"},
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},

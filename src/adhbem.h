@@ -122,7 +122,7 @@ typedef struct {
 } AdhCurveColumn;
 PETSC_EXTERN const AdhCurveColumn AdhCurveColumns[];
 PETSC_EXTERN const PetscInt       AdhCurveNumColumns;
-PETSC_EXTERN PetscReal            AdhCurveValue(const AdhCurve *, PetscInt k, PetscInt column);
+PETSC_EXTERN PetscReal            AdhStateValue(const AdhState *, PetscInt column);
 
 PETSC_EXTERN PetscErrorCode AdhSolverCreate(MPI_Comm, AdhSolver *);
 PETSC_EXTERN PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver, const char[]);
@@ -157,6 +157,11 @@ PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);
 PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal target);
 /* The whole -adh_path, recording every state in the curve. */
 PETSC_EXTERN PetscErrorCode AdhSolverSolvePath(AdhSolver);
+/* Monitors: called on every rank after each recorded state of a path (step number, the state).
+   -adh_monitor sets AdhSolverMonitorDefault, one line per state. */
+PETSC_EXTERN PetscErrorCode AdhSolverMonitorSet(AdhSolver, PetscErrorCode (*)(AdhSolver, PetscInt, const AdhState *, void *), void *, PetscErrorCode (*)(void **));
+PETSC_EXTERN PetscErrorCode AdhSolverMonitorCancel(AdhSolver);
+PETSC_EXTERN PetscErrorCode AdhSolverMonitorDefault(AdhSolver, PetscInt, const AdhState *, void *);
 /* Whether the last step ended in pull-off (the next step starts with the bodies apart). */
 PETSC_EXTERN PetscErrorCode AdhSolverIsPulledOff(AdhSolver, PetscBool *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);

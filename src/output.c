@@ -207,8 +207,8 @@ static PetscErrorCode WriteCSV(AdhSolver s, const char csv[])
       for (PetscInt k = 0; k < c->n; k++) {
         fprintf(fp, "%" PetscInt_FMT, k);
         for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-          if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhCurveValue(c, k, j));
-          else fprintf(fp, ",%.17g", (double)AdhCurveValue(c, k, j));
+          if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&c->state[k], j));
+          else fprintf(fp, ",%.17g", (double)AdhStateValue(&c->state[k], j));
         }
         fprintf(fp, "\n");
       }
@@ -236,7 +236,7 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   /* Every column as a 1-D float64 dataset (counts too: PETSc's IS viewer adds a block dimension). */
   PetscCall(PetscMalloc1(c->n + 1, &column));
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-    for (PetscInt k = 0; k < c->n; k++) column[k] = AdhCurveValue(c, k, j);
+    for (PetscInt k = 0; k < c->n; k++) column[k] = AdhStateValue(&c->state[k], j);
     PetscCall(WriteRealArray(s, *viewer, AdhCurveColumns[j].name, c->n, column));
   }
   PetscCall(PetscFree(column));

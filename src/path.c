@@ -21,9 +21,9 @@ const AdhCurveColumn AdhCurveColumns[] = {
 };
 const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
 
-PetscReal AdhCurveValue(const AdhCurve *c, PetscInt k, PetscInt column)
+PetscReal AdhStateValue(const AdhState *st, PetscInt column)
 {
-  const char *field = (const char *)&c->state[k] + AdhCurveColumns[column].offset;
+  const char *field = (const char *)st + AdhCurveColumns[column].offset;
   return AdhCurveColumns[column].integer ? (PetscReal) * (const PetscInt *)field : *(const PetscReal *)field;
 }
 
@@ -125,7 +125,37 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
   PetscFunctionReturn(0);
 }
 
-/* Appends the current state to the curve, prints it with -adh_monitor, writes its fields. */
+PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSolver, PetscInt, const AdhState *, void *), void *ctx, PetscErrorCode (*destroy)(void **))
+{
+  PetscFunctionBegin;
+  PetscCheck(s->nmonitors < ADH_MAX_MONITORS, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "Too many monitors (at most %d)", ADH_MAX_MONITORS);
+  s->monitors[s->nmonitors]       = monitor;
+  s->monitor_ctx[s->nmonitors]     = ctx;
+  s->monitor_destroy[s->nmonitors] = destroy;
+  s->nmonitors++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverMonitorCancel(AdhSolver s)
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < s->nmonitors; k++)
+    if (s->monitor_destroy[k]) PetscCall(s->monitor_destroy[k](&s->monitor_ctx[k]));
+  s->nmonitors = 0;
+  PetscFunctionReturn(0);
+}
+
+/* One line per state (the header before the first), and a line at pull-off. */
+PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhState *st, void *ctx)
+{
+  PetscFunctionBegin;
+  if (step == 0) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "patches", "outer", "ksp", "K-mults", "seconds"));
+  PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %7" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f\n", step, (double)st->d, (double)st->force, (double)st->area, st->contact_points, st->patches, st->outer_iterations, st->ksp_iterations, st->compliance_applications, (double)st->seconds));
+  if (st->pulled_off) PetscCall(PetscPrintf(s->comm, "pull-off at d = %g, force %g: the contact has come off, the leg ends\n", (double)st->d, (double)st->force));
+  PetscFunctionReturn(0);
+}
+
+/* Appends the current state to the curve, calls the monitors, writes its fields. */
 static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
 {
   AdhState       st;
@@ -136,12 +166,8 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   PetscCall(PetscTime(&t1));
   st.seconds = (PetscReal)(t1 - t0);
   PetscCall(AdhCurveAppend_Private(&s->curve, &st));
-  if (s->monitor) {
-    if (s->curve.n == 1) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "patches", "outer", "ksp", "K-mults", "seconds"));
-    PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %7" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f\n", s->curve.n - 1, (double)st.d, (double)st.force, (double)st.area, st.contact_points, st.patches, st.outer_iterations, st.ksp_iterations, st.compliance_applications, (double)st.seconds));
-    if (st.pulled_off) PetscCall(PetscPrintf(s->comm, "pull-off at d = %g, force %g: the contact has come off, the leg ends\n", (double)st.d, (double)st.force));
-  }
   if (viewer && s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
+  for (PetscInt k = 0; k < s->nmonitors; k++) PetscCall(s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]));
   PetscFunctionReturn(0);
 }
 

@@ -57,6 +57,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscBool         set, certify = s->certify;
   char              control[64];
   PetscFunctionList controls;
+  PetscBool         monitor_set;
 
   PetscFunctionBegin;
   PetscCall(AdhGridSetFromOptions(s->grid));
@@ -87,12 +88,14 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force (bisection between the last force carried and the first one not)", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
-  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolver", s->monitor, &s->monitor, NULL));
+  monitor_set = s->monitor;
+  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolverMonitorSet", s->monitor, &s->monitor, NULL));
   PetscCall(PetscOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
   PetscCall(PetscOptionsBool("-adh_fields", "Write pressure, displacement, gap and contact mask of every step", "AdhSolver", s->fields, &s->fields, NULL));
   PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
   PetscOptionsEnd();
   s->certify = certify;
+  if (s->monitor && !monitor_set) PetscCall(AdhSolverMonitorSet(s, AdhSolverMonitorDefault, NULL, NULL));
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
@@ -298,6 +301,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscFunctionBegin;
   if (!s) PetscFunctionReturn(0);
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
+  PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));
   PetscCall(ISDestroy(&s->contact_op));

@@ -28,6 +28,8 @@ typedef struct {
   PetscReal d;
 } AdhSavedState;
 
+#define ADH_MAX_MONITORS 8
+
 struct _n_AdhSolver {
   MPI_Comm    comm;
   char       *prefix;
@@ -97,6 +99,12 @@ struct _n_AdhSolver {
   PetscInt  step_outer, step_ksp, step_mults;
   PetscLogDouble progress_time;  /* last progress line inside a step (-adh_monitor) */
   PetscReal monitor_interval;   /* seconds between progress lines */
+
+  /* monitors, called after every recorded state */
+  PetscInt nmonitors;
+  PetscErrorCode (*monitors[ADH_MAX_MONITORS])(AdhSolver, PetscInt, const AdhState *, void *);
+  void          *monitor_ctx[ADH_MAX_MONITORS];
+  PetscErrorCode (*monitor_destroy[ADH_MAX_MONITORS])(void **);
 
   /* path and output */
   PetscReal *path;

@@ -255,9 +255,24 @@ class Solver:
         _adhbem.solver_solve_path(self._s)
         return self.curve()
 
+    def monitor(self, fn):
+        """Calls fn(step, state) on every rank after each recorded state of solve_path(); state is a
+        dict of the curve's columns. The solver's fields (pressure, contact_set, ...) are current
+        inside fn, so it can gather or save them."""
+        _adhbem.solver_monitor(self._s, fn)
+
+    def contact_mask(self):
+        """A new Vec on the grid: 1 on the points of the contact set, 0 elsewhere."""
+        v = self.pressure.duplicate()
+        v.set(0.0)
+        r0, _ = v.getOwnershipRange()
+        v.getArray()[self.contact_set.getIndices() - r0] = 1.0
+        return v
+
     def curve(self):
-        """dict of NumPy arrays: d, force, area, contact_points, outer_iterations, ksp_iterations,
-        compliance_applications, seconds."""
+        """dict of NumPy arrays, one entry per recorded state: d, force, area, contact_points,
+        outer_iterations, ksp_iterations, seconds, compliance_applications, patches, mean_gap,
+        max_tension_ratio, area_tension, area_compression, pulled_off."""
         import numpy as np
         return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
 

@@ -198,6 +198,53 @@ static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
+static PyObject *state_columns(const AdhState *st)
+{
+  PyObject *dict = PyDict_New();
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    const PetscReal v = AdhStateValue(st, j);
+    PyObject       *o = AdhCurveColumns[j].integer ? PyLong_FromLong((long)v) : PyFloat_FromDouble((double)v);
+    PyDict_SetItemString(dict, AdhCurveColumns[j].name, o);
+    Py_DECREF(o);
+  }
+  return dict;
+}
+
+/* A Python callable as an AdhSolver monitor: fn(step, state_dict). An exception in it stops the
+   path (its traceback is printed first). */
+static PetscErrorCode PythonMonitor(AdhSolver s, PetscInt step, const AdhState *st, void *ctx)
+{
+  PyObject *state = state_columns(st), *r;
+  r = PyObject_CallFunction((PyObject *)ctx, "nO", (Py_ssize_t)step, state);
+  Py_DECREF(state);
+  if (!r) {
+    PyErr_Print();
+    return PETSC_ERR_USER;
+  }
+  Py_DECREF(r);
+  return 0;
+}
+
+static PetscErrorCode PythonMonitorDestroy(void **ctx)
+{
+  Py_XDECREF((PyObject *)*ctx);
+  *ctx = NULL;
+  return 0;
+}
+
+static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
+{
+  PyObject *cap, *fn;
+  if (!PyArg_ParseTuple(args, "OO", &cap, &fn)) return NULL;
+  if (!PyCallable_Check(fn)) {
+    PyErr_SetString(PyExc_TypeError, "monitor: expected a callable fn(step, state)");
+    return NULL;
+  }
+  Py_INCREF(fn);
+  PyPetscCall(AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy));
+  Py_RETURN_NONE;
+}
+
 static PyObject *py_solver_curve(PyObject *self, PyObject *args)
 {
   PyObject       *cap, *dict;
@@ -208,7 +255,7 @@ static PyObject *py_solver_curve(PyObject *self, PyObject *args)
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
     PyObject *l = PyList_New(c->n);
     for (PetscInt k = 0; k < c->n; k++) {
-      const PetscReal v = AdhCurveValue(c, k, j);
+      const PetscReal v = AdhStateValue(&c->state[k], j);
       PyList_SET_ITEM(l, k, AdhCurveColumns[j].integer ? PyLong_FromLong((long)v) : PyFloat_FromDouble((double)v));
     }
     PyDict_SetItemString(dict, AdhCurveColumns[j].name, l);
@@ -298,6 +345,7 @@ static PyMethodDef methods[] = {
   {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state"},
   {"solver_state", py_solver_state, METH_VARARGS, "solver_state(s) -> state"},
   {"solver_solve_path", py_solver_solve_path, METH_VARARGS, "solver_solve_path(s)"},
+  {"solver_monitor", py_solver_monitor, METH_VARARGS, "solver_monitor(s, fn): fn(step, state) after every recorded state"},
   {"solver_curve", py_solver_curve, METH_VARARGS, "solver_curve(s) -> dict of lists"},
   {"solver_objects", py_solver_objects, METH_VARARGS, "solver_objects(s) -> dict of petsc4py objects"},
   {"solver_critical_stress", py_solver_sigma, METH_VARARGS, "solver_critical_stress(s) -> Sigma"},

@@ -238,8 +238,9 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, PetscInt *added)
   PetscCall(VecGetArrayRead(s->Sigma_field, &ta));
   for (k = 0; k < n; k++) {
     const PetscReal limit = reach ? PetscRealPart(ta[k]) * K00 : 0.0;
-    /* Under reach, a point that let go in this step stays off, so the step cannot cycle. */
-    if (!s->in_set[k] && PetscRealPart(ga[k]) < limit && !(reach && s->left[k])) {
+    /* Under reach, a point that let go in this step stays off, so the step cannot cycle; where
+       Sigma = 0, reach is penetration and the point may come back. */
+    if (!s->in_set[k] && PetscRealPart(ga[k]) < limit && !(reach && s->left[k] && limit > 0)) {
       s->in_set[k] = 1;
       count++;
     }

@@ -76,7 +76,8 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscOptionsEnd();
   /* A topography file given without an indenter type is the indenter. */
   if (topo && !typeset && ind->topography[0]) ind->type = ADH_INDENTER_FILE;
-  if (ind->type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceSetFromOptions(comm, prefix, &ind->surface));
+  /* read always, so that -help lists them; they shape only a rough indenter */
+  PetscCall(AdhSurfaceSetFromOptions(comm, prefix, &ind->surface));
   PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive, got %g", (double)ind->radius);
   PetscCheck(ind->type != ADH_INDENTER_PUNCH || ind->punch_radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive, got %g", (double)ind->punch_radius);
   PetscCheck(ind->type != ADH_INDENTER_CONE || ind->cone_slope > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive, got %g", (double)ind->cone_slope);

@@ -208,6 +208,16 @@ static PetscErrorCode CheckTouched(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* A path that cannot be followed fails before any work and before a results file is opened. */
+static PetscErrorCode CheckPath(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCheck(!(s->force_control && s->start == ADH_START_HERTZ && s->path[0] < 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)s->path[0]);
+  if (s->boundary == ADH_BOUNDARY_PERIODIC && !s->force_control)
+    for (PetscInt k = 0; k < s->npath; k++) PetscCheck(s->path[k] < s->mean_h, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (at d = mean(h) = %g the whole cell touches and, under displacement control, the force is undetermined); stay below it or use -adh_control force", (double)s->path[k], (double)s->mean_h);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 {
   PetscViewer    viewer = NULL;
@@ -215,6 +225,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
+  PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
   if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
   ierr = SolvePathInner(s, viewer);

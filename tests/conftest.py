@@ -19,3 +19,12 @@ def root():
 def comm():
     from adhbem import PETSc
     return PETSc.COMM_WORLD
+
+
+def pytest_configure(config):
+    # Under mpirun every rank is a pytest process; one temporary base directory per rank keeps
+    # their clean-ups of old directories from racing each other.
+    rank = os.environ.get("OMPI_COMM_WORLD_RANK")
+    if rank is not None and not config.option.basetemp:
+        size = os.environ.get("OMPI_COMM_WORLD_SIZE", "1")
+        config.option.basetemp = os.path.join("/tmp", f"adhbem-pytest-{os.getuid()}-{size}ranks-rank{rank}")

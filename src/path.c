@@ -64,6 +64,14 @@ PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBo
   PetscFunctionReturn(0);
 }
 
+/* The adhesion-free start carries no tension: under force control its force must be >= 0. */
+static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
+{
+  PetscFunctionBegin;
+  PetscCheck(s->start != ADH_START_HERTZ || !s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 {
   PetscInt  outer = 0, ksp = 0, mults = 0;
@@ -75,7 +83,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
   if (s->start == ADH_START_HERTZ) {
     /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap, or under force control
        from the first touch. */
-    PetscCheck(!s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+    PetscCall(CheckStartTarget(s, target));
     PetscCall(AdhSolverSetFromOverlap_Private(s, s->force_control ? dtouch : target, (PetscBool)!s->force_control));
     s->d        = dtouch;
     s->adhesive = PETSC_FALSE;
@@ -227,6 +235,8 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
+  /* Bad input is refused before the results file is opened (no file, not an empty one). */
+  if (s->npath) PetscCall(CheckStartTarget(s, s->path[0]));
   if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
   ierr = SolvePathInner(s, viewer);
   /* What was computed before an error is still written, marked incomplete. */

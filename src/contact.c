@@ -277,6 +277,14 @@ PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver s, PetscInt outer)
   PetscFunctionReturn(0);
 }
 
+/* Under displacement control a periodic cell must stay above full contact, d < mean(h). */
+PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver s, PetscReal d)
+{
+  PetscFunctionBegin;
+  PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && d >= s->mean_h), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (the gap's mean is max(0, mean(h) - d), and mean(h) = %g): under displacement control the force is undetermined there; use -adh_control force", (double)d, (double)s->mean_h);
+  PetscFunctionReturn(0);
+}
+
 /* Displacement control: the equilibrium set at indentation d, from the current set. */
 PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
 {
@@ -284,7 +292,7 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
   const PetscBool had_contact = s->npoints > 0;
 
   PetscFunctionBegin;
-  PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && d >= s->mean_h), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (the gap's mean is max(0, mean(h) - d), and mean(h) = %g): under displacement control the force is undetermined there; use -adh_control force", (double)d, (double)s->mean_h);
+  PetscCall(AdhSolverCheckBelowFullContact_Private(s, d));
   s->d = d;
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);

@@ -220,9 +220,9 @@ static PetscErrorCode CheckTouched(AdhSolver s)
 static PetscErrorCode CheckPath(AdhSolver s)
 {
   PetscFunctionBegin;
-  PetscCheck(!(s->force_control && s->start == ADH_START_HERTZ && s->path[0] < 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)s->path[0]);
+  PetscCall(CheckStartTarget(s, s->path[0]));
   if (s->boundary == ADH_BOUNDARY_PERIODIC && !s->force_control)
-    for (PetscInt k = 0; k < s->npath; k++) PetscCheck(s->path[k] < s->mean_h, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (at d = mean(h) = %g the whole cell touches and, under displacement control, the force is undetermined); stay below it or use -adh_control force", (double)s->path[k], (double)s->mean_h);
+    for (PetscInt k = 0; k < s->npath; k++) PetscCall(AdhSolverCheckBelowFullContact_Private(s, s->path[k]));
   PetscFunctionReturn(0);
 }
 
@@ -235,8 +235,6 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
-  /* Bad input is refused before the results file is opened (no file, not an empty one). */
-  if (s->npath) PetscCall(CheckStartTarget(s, s->path[0]));
   if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
   ierr = SolvePathInner(s, viewer);
   /* What was computed before an error is still written, marked incomplete. */

@@ -130,6 +130,7 @@ PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);
 PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal d, PetscBool strict);
 PETSC_INTERN PetscErrorCode AdhSolverStep_Displacement(AdhSolver, PetscReal);
+PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
 PETSC_INTERN PetscErrorCode AdhControlRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhControlGetList_Private(PetscFunctionList *);

@@ -244,7 +244,8 @@ class Solver:
         return _adhbem.solver_start(self._s, float(d))
 
     def step(self, d):
-        """One step to indentation d from the current contact set; returns the state as a dict."""
+        """One step to indentation d (a force under control="force") from the current contact set;
+        returns the state as a dict of the curve's columns (seconds is 0: only paths time steps)."""
         return _adhbem.solver_step(self._s, float(d))
 
     def state(self):

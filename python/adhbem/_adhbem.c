@@ -156,13 +156,14 @@ static PyObject *py_solver_create(PyObject *self, PyObject *args)
   return PyCapsule_New(s, "AdhSolver", solver_capsule_destroy);
 }
 
+static PyObject *state_columns(const AdhState *);
+
+/* The current state as a dict of the curve's columns (statistics included). */
 static PyObject *state_dict(AdhSolver s)
 {
-  PetscReal d, F, A, Sigma;
-  PetscInt  points, outer, ksp, mults;
-  PyPetscCall(AdhSolverGetState(s, &d, &F, &A, &points, &outer, &ksp, &mults));
-  PyPetscCall(AdhSolverGetCriticalStress(s, &Sigma));
-  return Py_BuildValue("{s:d,s:d,s:d,s:n,s:n,s:n,s:n}", "d", (double)d, "force", (double)F, "area", (double)A, "contact_points", (Py_ssize_t)points, "outer_iterations", (Py_ssize_t)outer, "ksp_iterations", (Py_ssize_t)ksp, "compliance_applications", (Py_ssize_t)mults);
+  AdhState st;
+  PyPetscCall(AdhSolverComputeState(s, &st));
+  return state_columns(&st);
 }
 
 static PyObject *py_solver_start(PyObject *self, PyObject *args)
@@ -200,6 +201,7 @@ static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
 
 static PyObject *state_columns(const AdhState *st)
 {
+  /* every column of the curve, by name */
   PyObject *dict = PyDict_New();
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
     const PetscReal v = AdhStateValue(st, j);

@@ -2,7 +2,7 @@
 
 A periodic cell of N x N grid points (spacing 1, E* = 1) with a random self-affine surface
 (Hurst 0.8, rms slope 0.1, roll-off at a quarter of the cell, cut-off at 4 grid spacings) is pressed in
-from first touch (d = 0) to the indentation at which a quarter of the gap profile lies below it,
+from first touch (d = 0) to the indentation at which 15% of the gap profile lies below it,
 then pulled back to d = 0 and on until it comes off, once with adhesion and once without. Writes
 results/rough.h5 and .csv (with adhesion), results/rough_nonadhesive.h5 and .csv,
 results/rough.png, and prints a short table.
@@ -37,7 +37,7 @@ def worker(a):
     z, stats = adhbem.rough_surface(a.n, size=float(a.n), hurst=0.8, rms_slope=0.1,
                                     rolloff_wavelength=opts["rolloff_wavelength"], seed=1)
     Z = adhbem.gather(z, z)
-    d1 = float(np.quantile(Z.max() - Z, 0.25))
+    d1 = float(np.quantile(Z.max() - Z, a.depth))
     maps = {}
     for name, gamma in (("rough", a.gamma), ("rough_nonadhesive", 0.0)):
         # the same indentations on approach and retraction down to d = 0, then on to pull-off
@@ -46,12 +46,14 @@ def worker(a):
                           output=os.path.join(a.results, name + ".h5"))
         best = {"load": (-np.inf, None), "tension": (np.inf, None)}
 
-        def keep(step, state, s=s, best=best):
-            # the contact map of the largest load and of the largest tension so far
+        def keep(step, state, s=s, best=best, deepest=[-np.inf]):
+            # the contact maps of the largest load (the deepest indentation) and of the largest
+            # tension so far
             F = state["force"]
-            for key, better in (("load", F > best["load"][0]), ("tension", F < best["tension"][0] and F < 0)):
+            for key, better in (("load", state["d"] > deepest[0]), ("tension", F < best["tension"][0] and F < 0)):
                 if better:
                     best[key] = (F, adhbem.gather(s.contact_mask(), s.compliance) > 0)
+            deepest[0] = max(deepest[0], state["d"])
         s.monitor(keep)
         if rank == 0:
             print(f"\n{name}: dgamma = {gamma}, N = {a.n}, path 0 -> {d1:.4g} -> 0 -> {-d1:.4g}, {a.steps} steps a leg", flush=True)
@@ -96,7 +98,17 @@ def report(a):
     plot(a, c, c0)
 
 
+def in_contact(c):
+    """The states up to the first one without contact after the deepest: a retraction that has
+    come off has nothing more to show."""
+    k = int(np.argmax(c["d"]))
+    off = np.nonzero(c["contact_points"][k:] == 0)[0]
+    end = k + int(off[0]) + 1 if len(off) else len(c["d"])
+    return {key: v[:end] for key, v in c.items()}
+
+
 def plot(a, c, c0):
+    c, c0 = in_contact(c), in_contact(c0)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -116,7 +128,16 @@ def plot(a, c, c0):
     for j, key, title in ((0, "load", "largest load"), (1, "tension", "largest tension")):
         axm = ax[1, j]
         if f"{key}_map" in maps:
-            axm.imshow(maps[f"{key}_map"], origin="lower", cmap="Greys", interpolation="nearest")
+            m = maps[f"{key}_map"]
+            # a small contact is shown in its own window (the cell is periodic: no wrap here)
+            j, i = np.nonzero(m)
+            pad = 16
+            j0, j1, i0, i1 = 0, m.shape[0], 0, m.shape[1]
+            if len(j):
+                j0, j1 = max(j.min() - pad, 0), min(j.max() + pad + 1, m.shape[0])
+                i0, i1 = max(i.min() - pad, 0), min(i.max() + pad + 1, m.shape[1])
+            axm.imshow(m[j0:j1, i0:i1], origin="lower", cmap="Greys", interpolation="nearest",
+                       extent=(i0 - 0.5, i1 - 0.5, j0 - 0.5, j1 - 0.5))
             axm.set_title(f"contact map at the {title}, F = {float(maps[key + '_force']):.4g}")
         else:
             axm.set_title(f"no state carries a tension")
@@ -133,7 +154,9 @@ def main():
     p.add_argument("--np", type=int, default=2, help="MPI ranks")
     p.add_argument("--gamma", type=float, default=0.004, help="work of adhesion (E* = 1, grid spacing 1)")
     p.add_argument("--rolloff", type=float, default=0.25, help="roll-off wavelength over the cell size")
-    p.add_argument("--steps", type=int, default=12, help="steps per leg")
+    p.add_argument("--steps", type=int, default=10, help="steps per leg")
+    p.add_argument("--depth", type=float, default=0.15,
+                   help="the deepest indentation: the fraction of the gap profile that lies below it")
     p.add_argument("--results", default=os.path.join(ROOT, "results"))
     p.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     a = p.parse_args()
@@ -143,7 +166,7 @@ def main():
     os.makedirs(a.results, exist_ok=True)
     cmd = ["mpirun", "--oversubscribe", "-n", str(a.np), sys.executable, os.path.abspath(__file__), "--worker",
            "--n", str(a.n), "--np", str(a.np), "--gamma", repr(a.gamma), "--steps", str(a.steps),
-           "--rolloff", repr(a.rolloff), "--results", a.results]
+           "--rolloff", repr(a.rolloff), "--depth", repr(a.depth), "--results", a.results]
     subprocess.run(cmd, check=True)
     report(a)
 

@@ -19,50 +19,15 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from common import _max, _min, gamma_for, jkr_scales, radius, rank0, say  # noqa: E402
 
 R = 1.0   # sphere radius
 E = 1.0   # reduced modulus E*
 
 
-def rank0():
-    return PETSc.COMM_WORLD.getRank() == 0
-
-
-def say(*args):
-    if rank0():
-        print(*args, flush=True)
-
-
-def radius(area):
-    """Contact radius from the area, a = sqrt(A / pi)."""
-    return np.sqrt(np.asarray(area) / math.pi)
-
-
-def jkr_scales(gamma):
-    """(a_c, |d_c|, F_adh) of a sphere with work of adhesion gamma."""
-    ac = (9 * math.pi * gamma * R ** 2 / (8 * E)) ** (1 / 3)
-    dc = (3 * math.pi ** 2 * gamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
-    return ac, dc, 1.5 * math.pi * gamma * R
-
-
-def gamma_for(ac):
-    """The work of adhesion that gives the JKR critical radius a_c."""
-    return ac ** 3 * 8 * E / (9 * math.pi * R ** 2)
-
-
 def hertz_force(a):
     """Hertz force at contact radius a."""
     return 4.0 / 3.0 * E * a ** 3 / R
-
-
-def _max():
-    from mpi4py import MPI
-    return MPI.MAX
-
-
-def _min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 # ---- Hertz under force control ---------------------------------------------------------------------

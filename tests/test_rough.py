@@ -14,6 +14,7 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from common import say  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = os.path.join(ROOT, "build", "adhbem")
@@ -27,11 +28,6 @@ def rough_options(n=64, **extra):
                 start="adhesive", attach="reach", steps=4, **SURFACE)
     opts.update(extra)
     return opts
-
-
-def say(*args):
-    if PETSc.COMM_WORLD.getRank() == 0:
-        print(*args, flush=True)
 
 
 def depth(n=64, fraction=0.25):

@@ -12,15 +12,7 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
-
-
-def rank0():
-    return PETSc.COMM_WORLD.getRank() == 0
-
-
-def say(*args):
-    if rank0():
-        print(*args, flush=True)
+from common import _min, rank0, say  # noqa: E402
 
 
 def surface(n, comm=PETSc.COMM_SELF, **kw):
@@ -163,11 +155,6 @@ def test_fftw_wisdom_does_not_change_the_surface():
     K.destroy()
     K2.destroy()
     assert np.array_equal(a, b)
-
-
-def _min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 @pytest.mark.mpi

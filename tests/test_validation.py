@@ -23,23 +23,10 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from common import _max, _min, gamma_for, jkr_scales, radius, rank0, say  # noqa: E402
 
 R = 1.0   # sphere radius
 E = 1.0   # reduced modulus E*
-
-
-def rank0():
-    return PETSc.COMM_WORLD.getRank() == 0
-
-
-def say(*args):
-    if rank0():
-        print(*args, flush=True)
-
-
-def radius(area):
-    """Contact radius from the area, a = sqrt(A / pi) (DESIGN.md section 5)."""
-    return np.sqrt(np.asarray(area) / math.pi)
 
 
 # ---- JKR helpers -------------------------------------------------------------------------------
@@ -59,18 +46,6 @@ def jkr_force(dn):
 def jkr_a(dn):
     """a~(d~) of JKR on the stable branch."""
     return np.interp(dn, _D_BRANCH, _A_BRANCH)
-
-
-def jkr_scales(gamma):
-    """(a_c, |d_c|, F_adh) of a sphere with work of adhesion gamma (DESIGN.md section 5)."""
-    ac = (9 * math.pi * gamma * R ** 2 / (8 * E)) ** (1 / 3)
-    dc = (3 * math.pi ** 2 * gamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
-    return ac, dc, 1.5 * math.pi * gamma * R
-
-
-def gamma_for(ac):
-    """The work of adhesion that gives the JKR critical radius a_c."""
-    return ac ** 3 * 8 * E / (9 * math.pi * R ** 2)
 
 
 # The mesh-dependence study's physical problem: L = 1 and a_c = 0.3125 (a_c/h = 12.5, 25, 50 on
@@ -405,16 +380,6 @@ def test_ranks_give_the_same_curve():
         f" max |F_P - F_1| / max|F| = {rel:.2e}, contact counts identical: {bool(counts)}")
     assert dsame == 1 and counts == 1 and pulled == 1
     assert rel < 1e-10
-
-
-def _max():
-    from mpi4py import MPI
-    return MPI.MAX
-
-
-def _min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 # ---- Invariants on every state ---------------------------------------------------------------------

@@ -1,0 +1,46 @@
+"""Helpers shared by the test files: printing on rank 0, MPI reductions for collective
+assertions, and the JKR scales of a sphere (R = 1, E* = 1 unless given)."""
+import math
+
+import numpy as np
+from adhbem import PETSc
+
+R = 1.0   # sphere radius
+E = 1.0   # reduced modulus E*
+
+
+def rank0():
+    return PETSc.COMM_WORLD.getRank() == 0
+
+
+def say(*args):
+    """Print on rank 0 only (pytest -s shows it)."""
+    if rank0():
+        print(*args, flush=True)
+
+
+def _max():
+    from mpi4py import MPI
+    return MPI.MAX
+
+
+def _min():
+    from mpi4py import MPI
+    return MPI.MIN
+
+
+def radius(area):
+    """Contact radius from the area, a = sqrt(A / pi)."""
+    return np.sqrt(np.asarray(area) / math.pi)
+
+
+def jkr_scales(gamma, R=R, E=E):
+    """(a_c, |d_c|, F_adh) of a sphere with work of adhesion gamma."""
+    ac = (9 * math.pi * gamma * R ** 2 / (8 * E)) ** (1 / 3)
+    dc = (3 * math.pi ** 2 * gamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
+    return ac, dc, 1.5 * math.pi * gamma * R
+
+
+def gamma_for(ac, R=R, E=E):
+    """The work of adhesion that gives the JKR critical radius a_c."""
+    return ac ** 3 * 8 * E / (9 * math.pi * R ** 2)

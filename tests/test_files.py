@@ -354,3 +354,17 @@ def _max():
 def _min():
     from mpi4py import MPI
     return MPI.MIN
+
+
+def test_a_path_that_never_touches_says_so(root, tmp_path):
+    """A path that stays above the surface runs (every state empty) and says so."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("starts its own process")
+    exe = os.path.join(root, "build", "adhbem")
+    r = subprocess.run([exe, "-adh_n", "32", "-adh_path", "-0.02,-0.01", "-adh_steps", "2",
+                        "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0
+    assert "never touches the surface" in r.stdout and "first touch at d = 0" in r.stdout
+    r = subprocess.run([exe, "-adh_n", "32", "-adh_path", "-0.02,0.01", "-adh_steps", "2"],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and "never touches" not in r.stdout

@@ -153,11 +153,15 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
 {
   const PetscReal A = s->grid->hx * s->grid->hy;
   PetscScalar     sum;
-  PetscReal       carried, failed = F;
+  PetscReal       carried, failed = F, tol;
 
   PetscFunctionBegin;
   if (!s->npoints) {
-    if (F <= 0) PetscFunctionReturn(0); /* off the surface, and nothing pulls it back */
+    if (F <= 0) {
+      /* off the surface, and nothing pulls it back: no pressure, the undeformed gap */
+      PetscCall(AdhSolverComputeGap_Private(s));
+      PetscFunctionReturn(0);
+    }
     PetscCall(SeedFirstTouch(s));
   }
   PetscCall(VecSum(s->p, &sum));
@@ -166,8 +170,12 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   PetscCall(Equilibrate(s, F));
   if (s->npoints) PetscFunctionReturn(0);
   PetscCall(RestoreState(s, &s->previous));
-  while (PetscAbsReal(failed - carried) > s->pulloff_rtol * PetscAbsReal(carried)) {
+  /* relative to the step's forces, so that a pull-off force of 0 (no adhesion) ends too */
+  tol = s->pulloff_rtol * PetscMax(PetscAbsReal(carried), PetscAbsReal(F));
+  for (PetscInt k = 0; k < 60 && PetscAbsReal(failed - carried) > tol; k++) {
     const PetscReal mid = 0.5 * (carried + failed);
+    /* each trial is a step of its own from the saved state */
+    PetscCall(PetscArrayzero(s->left, s->nlocal));
     PetscCall(Equilibrate(s, mid));
     if (s->npoints) {
       carried = mid;

@@ -105,15 +105,7 @@ PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind
     }
     PetscCall(VecCopy(h, s->h));
     PetscCall(VecDestroy(&h));
-    { /* the periodic full-contact depth belongs to the new profile too */
-      PetscScalar sum;
-      PetscCall(VecSum(s->h, &sum));
-      s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
-    }
-    /* The contact state belonged to the old profile. */
-    PetscCall(VecSet(s->p, 0.0));
-    PetscCall(PetscArrayzero(s->in_set, s->nlocal));
-    PetscCall(AdhSolverRebuildSet_Private(s));
+    PetscCall(AdhSolverProfileChanged_Private(s));
   }
   PetscCall(PetscObjectReference((PetscObject)z));
   PetscCall(VecDestroy(&s->indenter.z));

@@ -42,7 +42,7 @@ int main(int argc, char **argv)
       mults += st->compliance_applications;
       outer += st->outer_iterations;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications\n", curve->n, (double)-Fmin, (double)dmin, outer, ksp, mults));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults));
   }
   PetscCall(AdhSolverDestroy(&solver));
   PetscCall(PetscFinalize());

@@ -175,7 +175,12 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   st.seconds = (PetscReal)(t1 - t0);
   PetscCall(AdhCurveAppend_Private(&s->curve, &st));
   if (viewer && s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
-  for (PetscInt k = 0; k < s->nmonitors; k++) PetscCall(s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]));
+  for (PetscInt k = 0; k < s->nmonitors; k++) {
+    /* a monitor that fails on one rank stops every rank, not just that one */
+    int err = (int)s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, s->comm));
+    PetscCheck(!err, s->comm, PETSC_ERR_USER, "Monitor %" PetscInt_FMT " failed at state %" PetscInt_FMT " (error %d)", k, s->curve.n - 1, err);
+  }
   PetscFunctionReturn(0);
 }
 

@@ -170,6 +170,26 @@ static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
 
 PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *);
 
+/* After the profile h is set or replaced: its mean (a periodic cell is in full contact at
+   d = mean(h)), and a contact state of nothing in contact. */
+PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
+{
+  PetscScalar sum;
+
+  PetscFunctionBegin;
+  PetscCall(VecSum(s->h, &sum));
+  s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+  PetscCall(VecSet(s->p, 0.0));
+  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+  PetscCall(PetscArrayzero(s->in_set, s->nlocal));
+  s->pulled_off = PETSC_FALSE;
+  PetscCall(VecSet(s->u, 0.0));
+  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
+  PetscCall(VecShift(s->g, -s->d));
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverSetUp(AdhSolver s)
 {
   PC       pc;
@@ -196,16 +216,11 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(VecSet(s->p, 0.0));
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
     if (s->gamma_file[0] && !s->gamma_field) PetscCall(LoadWorkOfAdhesionField(s));
-    {
-      PetscScalar sum;
-      PetscCall(VecSum(s->h, &sum));
-      s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
-    }
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
     s->nlocal = nlocal;
-    PetscCall(AdhSolverRebuildSet_Private(s));
+    PetscCall(AdhSolverProfileChanged_Private(s));
 
     PetscCall(KSPCreate(s->comm, &s->ksp));
     PetscCall(PetscSNPrintf(kspprefix, sizeof(kspprefix), "%sadh_", s->prefix ? s->prefix : ""));

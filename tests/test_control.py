@@ -252,3 +252,24 @@ def test_force_control_ranks_give_the_same_curve():
         f" pulled_off identical: {bool(pulled)}")
     assert counts == 1 and patches == 1 and pulled == 1 and had_pulloff == 1
     assert relF < 1e-10 and reld < 1e-10
+
+
+def test_force_control_without_adhesion_comes_off_at_zero(root):
+    """Without adhesion no equilibrium carries tension: a force path into tension comes off at a
+    force of zero (within -adh_pulloff_rtol of the step's forces) and ends; the bisection must end
+    although the pull-off force is 0 (run with a time limit, so that a hang fails)."""
+    r = subprocess.run([os.path.join(root, "build", "adhbem"), "-adh_n", "16", "-adh_control", "force",
+                        "-adh_path", "0.01,-0.01", "-adh_steps", "3", "-adh_monitor"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert "pull-off at" in r.stdout
+    s = adhbem.Solver(n=16, control="force", path=[0.01, -0.01, -0.005], steps=3)
+    c = s.solve_path()
+    k = int(np.nonzero(c["pulled_off"])[0][0])
+    say(f"\nforce control, gamma = 0: pull-off state {k} at F = {c['force'][k]:.3e}, {c['contact_points'][k]} points;"
+        f" states after it: points {c['contact_points'][k + 1:].tolist()}")
+    assert 0 <= c["force"][k] <= 1e-3 * 0.01 and c["contact_points"][k] > 0
+    # after pull-off (a new leg at F < 0): nothing in contact, the undeformed gap
+    h = adhbem.gather(s.profile, s.compliance)
+    assert k + 1 < len(c["d"]) and np.all(c["contact_points"][k + 1:] == 0) and np.all(c["force"][k + 1:] == 0)
+    np.testing.assert_allclose(c["mean_gap"][-1], h.mean() - c["d"][-1], rtol=1e-12)

@@ -243,7 +243,11 @@ static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
     return NULL;
   }
   Py_INCREF(fn);
-  PyPetscCall(AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy));
+  {
+    PetscErrorCode ierr = AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy);
+    if (ierr) Py_DECREF(fn); /* not kept */
+    PyPetscCall(ierr);
+  }
   Py_RETURN_NONE;
 }
 

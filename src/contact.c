@@ -222,29 +222,49 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
   PetscFunctionReturn(0);
 }
 
-/* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0. */
-PetscErrorCode AdhSolverAttach_Private(AdhSolver s, PetscInt *added)
+/* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0 (under reach,
+   g < Sigma K_00). With rate (force control), the points are added in the order in which they
+   would touch if the set's indentation e rose from where it was with the set fixed: a gap closes
+   at rate_k per unit e, so point k touches at e_k = e - (limit_k - g_k) / rate_k. Only the first
+   ones (up to a fraction ATTACH_BATCH of the way from the first to the current e) join; the next
+   force balance, with them, decides about the others. Adding every point that penetrates at the
+   e of the old, softer set would attach points that the load never reaches. */
+#define ATTACH_BATCH 0.1
+PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 {
-  const PetscScalar *ga, *ta;
+  const PetscScalar *ga, *ta, *ra = NULL;
   PetscInt           n, k, count = 0;
   const PetscBool    reach = s->attach == ADH_ATTACH_REACH && s->adhesive;
   /* reach: the gap an element closes under its own critical tension, Sigma K_00. */
   const PetscReal    K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+  PetscReal          efirst = PETSC_MAX_REAL, elimit = PETSC_MAX_REAL;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverComputeGap_Private(s));
   PetscCall(VecGetLocalSize(s->g, &n));
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(VecGetArrayRead(s->Sigma_field, &ta));
-  for (k = 0; k < n; k++) {
-    const PetscReal limit = reach ? PetscRealPart(ta[k]) * K00 : 0.0;
-    /* Under reach, a point that let go in this step stays off, so the step cannot cycle; where
-       Sigma = 0, reach is penetration and the point may come back. */
-    if (!s->in_set[k] && PetscRealPart(ga[k]) < limit && !(reach && s->left[k] && limit > 0)) {
+  if (rate) PetscCall(VecGetArrayRead(rate, &ra));
+#define LIMIT(k) (reach ? PetscRealPart(ta[k]) * K00 : 0.0)
+  /* Under reach, a point that let go in this step stays off, so the step cannot cycle; where
+     Sigma = 0, reach is penetration and the point may come back. */
+#define CANDIDATE(k) (!s->in_set[k] && PetscRealPart(ga[k]) < LIMIT(k) && !(reach && s->left[k] && LIMIT(k) > 0))
+#define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
+  if (rate) {
+    for (k = 0; k < n; k++)
+      if (CANDIDATE(k)) efirst = PetscMin(efirst, TOUCH(k));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &efirst, 1, MPIU_REAL, MPIU_MIN, s->comm));
+    if (efirst > PETSC_MIN_REAL && efirst < PETSC_MAX_REAL) elimit = efirst + ATTACH_BATCH * (s->e - efirst);
+  }
+  for (k = 0; k < n; k++)
+    if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit)) {
       s->in_set[k] = 1;
       count++;
     }
-  }
+#undef LIMIT
+#undef CANDIDATE
+#undef TOUCH
+  if (rate) PetscCall(VecRestoreArrayRead(rate, &ra));
   PetscCall(VecRestoreArrayRead(s->Sigma_field, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
@@ -302,7 +322,7 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
     PetscCall(AdhSolverDetach_Private(s, &removed));
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
-    if (!removed) PetscCall(AdhSolverAttach_Private(s, &added));
+    if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
     if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     if (!removed && !added) break;

@@ -44,6 +44,7 @@ static PetscErrorCode SetUp_Force(AdhSolver s)
   if (!s->xunit) {
     PetscCall(VecDuplicate(s->p, &s->xunit));
     PetscCall(VecSet(s->xunit, 0.0));
+    PetscCall(VecDuplicate(s->p, &s->gap_rate));
   }
   if (s->boundary == ADH_BOUNDARY_PERIODIC && !s->Kmean) {
     /* c0 = 2/(E* q_min), the compliance of the longest wave: the Fourier preconditioner's mean
@@ -62,6 +63,7 @@ static PetscErrorCode Destroy_Force(AdhSolver s)
   PetscCall(VecDestroy(&s->previous.p));
   PetscCall(VecDestroy(&s->previous.xunit));
   PetscCall(VecDestroy(&s->xunit));
+  PetscCall(VecDestroy(&s->gap_rate));
   PetscCall(MatDestroy(&s->Kmean));
   s->c0 = 0.0;
   PetscFunctionReturn(0);
@@ -137,7 +139,14 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F)
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(AdhSolverDetach_Private(s, &removed));
     added = 0;
-    if (!removed) PetscCall(AdhSolverAttach_Private(s, &added));
+    if (!removed) {
+      /* with the set fixed, g = h - d + K p closes at (dd/de) - (K x)_k per unit e, and
+         dd/de = 1 - c0 sum(x)/N */
+      PetscCall(MatMult(s->K, s->xunit, s->gap_rate));
+      PetscCall(VecScale(s->gap_rate, -1.0));
+      PetscCall(VecShift(s->gap_rate, 1.0 - (s->Kmean ? s->c0 * PetscRealPart(Fx) / (s->grid->Nx * s->grid->Ny) : 0.0)));
+      PetscCall(AdhSolverAttach_Private(s, s->gap_rate, &added));
+    }
     if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     s->step_outer++;

@@ -57,6 +57,7 @@ struct _n_AdhSolver {
   AdhControlOps cops;
   PetscBool     force_control;  /* the path holds forces */
   Vec           xunit;          /* force control: response of the set to a unit indentation, K_CC x = 1 */
+  Vec           gap_rate;       /* force control: how fast each gap closes as the set's indentation rises */
   Mat           Kmean;          /* force control, periodic: K + c0 (1 1^T)/N, positive definite on every set */
   PetscReal     c0;             /* its mean-mode compliance */
   PetscReal     e;              /* force control: the indentation of K_op's equations, d + c0 mean(p) */
@@ -125,7 +126,7 @@ PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, const AdhState *)
 PETSC_INTERN Vec            AdhSolverThreshold_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
-PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);

@@ -273,3 +273,20 @@ def test_force_control_without_adhesion_comes_off_at_zero(root):
     h = adhbem.gather(s.profile, s.compliance)
     assert k + 1 < len(c["d"]) and np.all(c["contact_points"][k + 1:] == 0) and np.all(c["force"][k + 1:] == 0)
     np.testing.assert_allclose(c["mean_gap"][-1], h.mean() - c["d"][-1], rtol=1e-12)
+
+
+def test_force_loading_with_adhesion_does_not_overshoot():
+    """Loading with adhesion under force control in 1 step reaches the state of 40 steps, and of
+    displacement control in 40 steps at that force: a step adds points in the order in which they
+    touch, not every point that penetrates at the depth the old, softer set needs (adhesion would
+    keep those: 512 points instead of 19 before)."""
+    base = dict(n=32, size=1.0, indenter="rough", rms_height=0.01, gamma=1e-3, start="adhesive")
+    disp = adhbem.Solver(**base, path=[0.0, 0.004, 0.008], steps=40).solve_path()
+    F = [disp["force"][40], disp["force"][80]]
+    runs = {k: adhbem.Solver(**base, control="force", path=[0.0] + F, steps=k).solve_path() for k in (1, 40)}
+    pts = {k: c["contact_points"][[k, 2 * k]].tolist() for k, c in runs.items()}
+    say(f"\nforce-controlled adhesive loading to F = {F}: points after 1 step a leg {pts[1]}, 40 steps {pts[40]},"
+        f" displacement control {disp['contact_points'][[40, 80]].tolist()}")
+    for k, c in runs.items():
+        assert pts[k] == disp["contact_points"][[40, 80]].tolist()
+        np.testing.assert_allclose(c["d"][[k, 2 * k]], [0.004, 0.008], rtol=1e-8)

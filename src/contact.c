@@ -223,13 +223,12 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 }
 
 /* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0 (under reach,
-   g < Sigma K_00). With rate (force control), the points are added in the order in which they
-   would touch if the set's indentation e rose from where it was with the set fixed: a gap closes
-   at rate_k per unit e, so point k touches at e_k = e - (limit_k - g_k) / rate_k. Only the first
-   ones (up to a fraction ATTACH_BATCH of the way from the first to the current e) join; the next
-   force balance, with them, decides about the others. Adding every point that penetrates at the
-   e of the old, softer set would attach points that the load never reaches. */
-#define ATTACH_BATCH 0.1
+   g < Sigma K_00). With rate (force control), the points join in the order in which they would
+   touch if the set's indentation e rose from where it was with the set fixed: a gap closes at
+   rate_k per unit e, so point k touches at e_k = e - (limit_k - g_k) / rate_k. At most as many
+   join as a quarter of the set has points (the set grows by at most 25%), the first to touch; the next force
+   balance, with them, decides about the others. Adding every point that penetrates at the e of a
+   small, soft set would attach points that the load never reaches. */
 PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 {
   const PetscScalar *ga, *ta, *ra = NULL;
@@ -237,7 +236,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   const PetscBool    reach = s->attach == ADH_ATTACH_REACH && s->adhesive;
   /* reach: the gap an element closes under its own critical tension, Sigma K_00. */
   const PetscReal    K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
-  PetscReal          efirst = PETSC_MAX_REAL, elimit = PETSC_MAX_REAL;
+  PetscReal          elimit = PETSC_MAX_REAL, efirst;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverComputeGap_Private(s));
@@ -251,10 +250,31 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 #define CANDIDATE(k) (!s->in_set[k] && PetscRealPart(ga[k]) < LIMIT(k) && !(reach && s->left[k] && LIMIT(k) > 0))
 #define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
   if (rate) {
+    /* the touching depth below which at most max(npoints, 1) candidates lie, by bisection */
+    PetscInt  total = 0, allowed = PetscMax(s->npoints / 4, 1);
+    PetscReal lo = PETSC_MAX_REAL, hi = s->e;
     for (k = 0; k < n; k++)
-      if (CANDIDATE(k)) efirst = PetscMin(efirst, TOUCH(k));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &efirst, 1, MPIU_REAL, MPIU_MIN, s->comm));
-    if (efirst > PETSC_MIN_REAL && efirst < PETSC_MAX_REAL) elimit = efirst + ATTACH_BATCH * (s->e - efirst);
+      if (CANDIDATE(k)) {
+        lo = PetscMin(lo, TOUCH(k));
+        total++;
+      }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &total, 1, MPIU_INT, MPI_SUM, s->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lo, 1, MPIU_REAL, MPIU_MIN, s->comm));
+    efirst = lo;
+    if (total > allowed && lo > PETSC_MIN_REAL) {
+      for (PetscInt it = 0; it < 60; it++) {
+        const PetscReal mid = 0.5 * (lo + hi);
+        PetscInt        below = 0;
+        for (k = 0; k < n; k++)
+          if (CANDIDATE(k) && TOUCH(k) <= mid) below++;
+        PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &below, 1, MPIU_INT, MPI_SUM, s->comm));
+        if (below > allowed) hi = mid;
+        else lo = mid;
+      }
+      /* at least the first point to touch; points that touch together (symmetric profiles) join
+         together, whatever the rounding, so the set does not depend on the number of ranks */
+      elimit = lo + 1e-8 * (s->e - efirst);
+    }
   }
   for (k = 0; k < n; k++)
     if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit)) {

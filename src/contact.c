@@ -250,7 +250,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 #define CANDIDATE(k) (!s->in_set[k] && PetscRealPart(ga[k]) < LIMIT(k) && !(reach && s->left[k] && LIMIT(k) > 0))
 #define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
   if (rate) {
-    /* the touching depth below which at most max(npoints, 1) candidates lie, by bisection */
+    /* the touching depth below which at most max(npoints/4, 1) candidates lie, by bisection */
     PetscInt  total = 0, allowed = PetscMax(s->npoints / 4, 1);
     PetscReal lo = PETSC_MAX_REAL, hi = s->e;
     for (k = 0; k < n; k++)

@@ -291,6 +291,18 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscFunctionReturn(0);
 }
 
+/* Nothing in contact: an empty set, no pressure. */
+PetscErrorCode AdhSolverClearContact_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(s->in_set, s->nlocal));
+  PetscCall(VecSet(s->p, 0.0));
+  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+  s->pulled_off = PETSC_FALSE;
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  PetscFunctionReturn(0);
+}
+
 /* u = K p and g = h - d + u for the current state. */
 PetscErrorCode AdhSolverComputeGap_Private(AdhSolver s)
 {

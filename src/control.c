@@ -275,11 +275,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   s->step_ksp   = 0;
   if (s->pulled_off) {
     /* The last step ended in pull-off: the bodies are apart now. */
-    PetscCall(PetscArrayzero(s->in_set, s->nlocal));
-    PetscCall(VecSet(s->p, 0.0));
-    if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
-    PetscCall(AdhSolverRebuildSet_Private(s));
-    s->pulled_off = PETSC_FALSE;
+    PetscCall(AdhSolverClearContact_Private(s));
   }
   PetscCall(s->cops.step(s, target));
   PetscCall(AdhSolverMultCount_Private(s, &mults1));

@@ -117,7 +117,7 @@ static PetscErrorCode WriteRealArray(AdhSolver s, PetscViewer viewer, const char
 static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
 {
   AdhSurface *sf = &s->indenter.surface;
-  Vec               z;
+  Vec         z;
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hurst", PETSC_REAL, &sf->hurst));
@@ -146,7 +146,6 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscReal     rtol, atol, dtol;
   PetscInt      maxits;
   KSPType       ksptype;
-
   PetscReal     pull_off = 0.0; /* the largest tension carried, -min F (0: none) */
 
   PetscFunctionBegin;

@@ -179,14 +179,10 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(VecSum(s->h, &sum));
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
-  PetscCall(VecSet(s->p, 0.0));
-  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
-  PetscCall(PetscArrayzero(s->in_set, s->nlocal));
-  s->pulled_off = PETSC_FALSE;
+  PetscCall(AdhSolverClearContact_Private(s));
   PetscCall(VecSet(s->u, 0.0));
-  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
+  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u)); /* the undeformed gap, g = h - d */
   PetscCall(VecShift(s->g, -s->d));
-  PetscCall(AdhSolverRebuildSet_Private(s));
   PetscFunctionReturn(0);
 }
 

@@ -357,6 +357,7 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
     if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
+    PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : "", removed, added, s->npoints));
     if (!removed && !added) break;
   }
   s->step_outer = outer;

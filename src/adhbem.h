@@ -27,6 +27,8 @@ PETSC_EXTERN PetscReal AdhCriticalStress(PetscReal hx, PetscReal hy, PetscReal E
 /* ---- grid.c: the Nx x Ny element grid, distributed by rows ---- */
 
 typedef struct _n_AdhGrid *AdhGrid;
+/* A distributed FFT of a grid's size, shared by its operators (compliance.c). */
+typedef struct _n_AdhTransform *AdhTransform;
 struct _n_AdhGrid {
   MPI_Comm  comm;
   PetscInt  Nx, Ny;   /* elements per side */
@@ -37,7 +39,9 @@ struct _n_AdhGrid {
   const char *prefix; /* options prefix (borrowed), also used by the compliance */
   PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
   PetscReal fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
+  AdhTransform transforms[2]; /* physical size and zero-padded (2Ny x 2Nx), made on first use */
 };
+PETSC_EXTERN PetscErrorCode AdhTransformRelease_Private(AdhTransform *);
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhGridSetSizes(AdhGrid, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly);

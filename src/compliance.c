@@ -7,13 +7,45 @@
 
    Arrays are row-major [j][i] (j along y, the distributed direction), as in FFTW-MPI. The forward
    transform leaves its output transposed and the backward one takes it so, which saves FFTW two
-   global transposes per multiply. FFTW's slabs split the padded rows evenly, which leaves the
-   physical rows on half the ranks; one VecScatter, built once, moves the balanced grid layout to
-   FFTW's and back. Both layouts order the entries j*Nx + i, so it is a pure redistribution. */
+   global transposes per multiply. On the periodic grid the grid's rows are FFTW's (grid.c), and
+   the multiply copies straight between the vectors and the transform array. FFTW's slabs split
+   the padded rows of the free transform evenly, which leaves the physical rows on half the ranks;
+   there one VecScatter, built once, moves the grid layout to FFTW's and back. Both layouts order
+   the entries j*Nx + i, so it is a pure redistribution. */
 #include <fftw3-mpi.h>
 #include "adhbem.h"
 
 const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOUNDARY_", NULL};
+
+/* A distributed in-place r2c transform of one size with its array, plans and (where the grid's
+   rows are not FFTW's) the redistribution. The operators of one grid share it (the compliance and
+   the stiffness of a periodic cell: one array, one pair of plans); only one multiply runs at a time.
+   The grid holds a reference and each operator one. */
+struct _n_AdhTransform {
+  PetscInt   refct;
+  ptrdiff_t  n0, n1, stride, local_n0, local_0_start, local_n1, local_1_start;
+  PetscInt   phys_rows;
+  double    *data;
+  fftw_plan  forward, backward;
+  Vec        xfft;
+  VecScatter toFFT;
+};
+
+PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
+{
+  PetscFunctionBegin;
+  if (!*t || --(*t)->refct > 0) {
+    *t = NULL;
+    PetscFunctionReturn(0);
+  }
+  fftw_destroy_plan((*t)->forward);
+  fftw_destroy_plan((*t)->backward);
+  fftw_free((*t)->data);
+  PetscCall(VecDestroy(&(*t)->xfft));
+  PetscCall(VecScatterDestroy(&(*t)->toFFT));
+  PetscCall(PetscFree(*t));
+  PetscFunctionReturn(0);
+}
 
 /* What the multiplier is: the compliance (free or periodic) or the periodic stiffness. */
 typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
@@ -32,10 +64,11 @@ typedef struct {
   double     *multiplier;                             /* real kernel spectrum / (n0 n1), transposed layout */
   fftw_plan   forward, backward;
   Vec         xfft;                                   /* physical values in FFTW's row distribution */
-  VecScatter  toFFT;
+  VecScatter  toFFT;                                  /* grid rows -> FFTW's (NULL: they are the same) */
   PetscReal   lambda_min, diagonal;
   PetscReal   lambda_meanfree;                        /* smallest eigenvalue on mean-free vectors */
   PetscInt    nmult;
+  AdhTransform t;                                     /* shared: data, plans, xfft, toFFT are its */
 } Compliance;
 
 static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
@@ -50,13 +83,17 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, x, y, 0));
-  PetscCall(VecScatterBegin(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
-
-  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
-  PetscCall(VecGetArrayRead(c->xfft, &xa));
-  for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(c->data + r * c->stride, xa + r * c->Nx, c->Nx));
-  PetscCall(VecRestoreArrayRead(c->xfft, &xa));
+  if (c->toFFT) {
+    PetscCall(VecScatterBegin(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
+  }
+  if (c->phys_rows < c->local_n0) PetscCall(PetscArrayzero(c->data + c->phys_rows * c->stride, (c->local_n0 - c->phys_rows) * c->stride));
+  PetscCall(VecGetArrayRead(c->toFFT ? c->xfft : x, &xa));
+  for (r = 0; r < c->phys_rows; r++) {
+    PetscCall(PetscArraycpy(c->data + r * c->stride, xa + r * c->Nx, c->Nx));
+    PetscCall(PetscArrayzero(c->data + r * c->stride + c->Nx, c->stride - c->Nx));
+  }
+  PetscCall(VecRestoreArrayRead(c->toFFT ? c->xfft : x, &xa));
 
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
   fftw_execute(c->forward);
@@ -71,11 +108,13 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
   fftw_execute(c->backward);
   PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
 
-  PetscCall(VecGetArrayWrite(c->xfft, &ya));
+  PetscCall(VecGetArrayWrite(c->toFFT ? c->xfft : y, &ya));
   for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->data + r * c->stride, c->Nx));
-  PetscCall(VecRestoreArrayWrite(c->xfft, &ya));
-  PetscCall(VecScatterBegin(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecRestoreArrayWrite(c->toFFT ? c->xfft : y, &ya));
+  if (c->toFFT) {
+    PetscCall(VecScatterBegin(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+  }
   c->nmult++;
   PetscCall(PetscLogFlops(4.0 * ncomplex));
   PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, x, y, 0));
@@ -115,12 +154,8 @@ static PetscErrorCode MatDestroy_Compliance(Mat K)
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
-  fftw_destroy_plan(c->forward);
-  fftw_destroy_plan(c->backward);
-  fftw_free(c->data);
+  PetscCall(AdhTransformRelease_Private(&c->t));
   PetscCall(PetscFree(c->multiplier));
-  PetscCall(VecDestroy(&c->xfft));
-  PetscCall(VecScatterDestroy(&c->toFFT));
   PetscCall(PetscFree(c));
   PetscFunctionReturn(0);
 }
@@ -207,18 +242,72 @@ static unsigned PlannerFlag(PetscInt effort)
   return flags[effort];
 }
 
+/* The grid's transform of the physical size (periodic) or the zero-padded one (free), created on
+   first use with the planner effort of the first operator that asks. */
+static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, AdhTransform *tout)
+{
+  AdhTransform t = grid->transforms[padded ? 1 : 0];
+  ptrdiff_t    alloc_local;
+  PetscInt     ys, ym, first_row, phys_start;
+  PetscMPIInt  size;
+  PetscBool    same;
+  Vec          x;
+  IS           is;
+
+  PetscFunctionBegin;
+  if (!t) {
+    PetscCall(PetscNew(&t));
+    t->refct    = 1; /* the grid's */
+    t->n0       = padded ? 2 * grid->Ny : grid->Ny;
+    t->n1       = padded ? 2 * grid->Nx : grid->Nx;
+    t->stride   = 2 * (t->n1 / 2 + 1);
+    alloc_local = fftw_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, grid->comm, &t->local_n0, &t->local_0_start, &t->local_n1, &t->local_1_start);
+    t->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
+    PetscCheck(t->data, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
+    /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
+       which plans many windows and uses the whole-grid operator rarely, asks for a short limit
+       through the grid (solver.c, box.c). An explicit -adh_fftw_timelimit wins. Only on one rank:
+       each rank times its own trials, and a limit would let ranks take different planning paths
+       into different collectives (a deadlock). */
+    PetscCallMPI(MPI_Comm_size(grid->comm, &size));
+    fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
+    t->forward  = fftw_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->data, (fftw_complex *)t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
+    t->backward = fftw_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftw_complex *)t->data, t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
+    PetscCheck(t->forward && t->backward, grid->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", t->n0, t->n1);
+
+    /* The scatter between the grid's rows and the physical rows of FFTW's slab, where they differ. */
+    first_row    = (PetscInt)t->local_0_start;
+    t->phys_rows = (PetscInt)PetscMax(0, PetscMin(t->local_0_start + t->local_n0, (ptrdiff_t)grid->Ny) - t->local_0_start);
+    phys_start   = PetscMin(first_row, grid->Ny) * grid->Nx;
+    PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
+    same = (PetscBool)(ys == first_row && ym == t->phys_rows);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, grid->comm));
+    if (!same) {
+      PetscCall(DMCreateGlobalVector(grid->da, &x));
+      PetscCall(VecCreateMPI(grid->comm, t->phys_rows * grid->Nx, grid->Nx * grid->Ny, &t->xfft));
+      PetscCall(ISCreateStride(grid->comm, t->phys_rows * grid->Nx, phys_start, 1, &is));
+      PetscCall(VecScatterCreate(x, is, t->xfft, is, &t->toFFT));
+      PetscCall(ISDestroy(&is));
+      PetscCall(VecDestroy(&x));
+    }
+    grid->transforms[padded ? 1 : 0] = t;
+  }
+  t->refct++;
+  *tout = t;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, Mat *K)
 {
   const AdhBoundary boundary = kind == KIND_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   Compliance *c;
-  PetscInt    ys, ym, effort = 1, phys_start, first_row;
+  PetscInt    ys, ym, effort = 1;
   PetscReal   timelimit = -1.0;
   PetscBool   tlset;
   PetscMPIInt size;
   ptrdiff_t   alloc_local, nspec;
   Vec         x, e;
-  IS          is;
 
   PetscFunctionBegin;
   PetscCall(AdhInitializePackage());
@@ -237,39 +326,21 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->boundary = boundary;
   c->Estar    = Estar;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
-  c->n0       = boundary == ADH_BOUNDARY_FREE ? 2 * c->Ny : c->Ny;
-  c->n1       = boundary == ADH_BOUNDARY_FREE ? 2 * c->Nx : c->Nx;
-  c->stride   = 2 * (c->n1 / 2 + 1);
-  alloc_local = fftw_mpi_local_size_2d_transposed(c->n0, c->n1 / 2 + 1, c->comm, &c->local_n0, &c->local_0_start, &c->local_n1, &c->local_1_start);
-  c->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
-  PetscCheck(c->data, c->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values", alloc_local);
+  PetscCall(GridGetTransform(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, &c->t));
+  c->n0 = c->t->n0; c->n1 = c->t->n1; c->stride = c->t->stride;
+  c->local_n0 = c->t->local_n0; c->local_0_start = c->t->local_0_start;
+  c->local_n1 = c->t->local_n1; c->local_1_start = c->t->local_1_start;
+  c->phys_rows = c->t->phys_rows;
+  c->data = c->t->data; c->forward = c->t->forward; c->backward = c->t->backward;
+  c->xfft = c->t->xfft; c->toFFT = c->t->toFFT;
   nspec = c->local_n1 * c->n0;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
-  /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
-     which plans many windows and uses the whole-grid operator rarely, asks for a short limit
-     through the grid (solver.c, box.c). An explicit -adh_fftw_timelimit wins. Only on one rank:
-     each rank times its own trials, and a limit would let ranks take different planning paths
-     into different collectives (a deadlock). */
-  PetscCallMPI(MPI_Comm_size(grid->comm, &size));
-  fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-  c->forward  = fftw_mpi_plan_dft_r2c_2d(c->n0, c->n1, c->data, (fftw_complex *)c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
-  c->backward = fftw_mpi_plan_dft_c2r_2d(c->n0, c->n1, (fftw_complex *)c->data, c->data, c->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
-  PetscCheck(c->forward && c->backward, c->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", c->n0, c->n1);
   if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
   else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
   else PetscCall(ComputeStiffnessMultiplier(c));
 
-  /* The scatter between the grid's balanced rows and the physical rows of FFTW's slab. */
-  first_row    = (PetscInt)c->local_0_start;
-  c->phys_rows = (PetscInt)PetscMax(0, PetscMin(c->local_0_start + c->local_n0, (ptrdiff_t)c->Ny) - c->local_0_start);
-  phys_start   = PetscMin(first_row, c->Ny) * c->Nx;
-  PetscCall(VecCreateMPI(c->comm, c->phys_rows * c->Nx, c->Nx * c->Ny, &c->xfft));
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(DMCreateGlobalVector(grid->da, &x));
-  PetscCall(ISCreateStride(c->comm, c->phys_rows * c->Nx, phys_start, 1, &is));
-  PetscCall(VecScatterCreate(x, is, c->xfft, is, &c->toFFT));
-  PetscCall(ISDestroy(&is));
-
   PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT, (void (*)(void))MatMult_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Compliance));

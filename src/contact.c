@@ -94,10 +94,10 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* The allowed tension: Sigma while adhesive, zero while computing a Hertz start. */
+/* The allowed tension: Sigma while adhesive; NULL (zero) while computing a Hertz start. */
 Vec AdhSolverThreshold_Private(AdhSolver s)
 {
-  return s->adhesive ? s->Sigma_field : s->zero;
+  return s->adhesive ? s->Sigma_field : NULL;
 }
 
 /* KSP convergence test: the full tolerance ||r|| <= max(rtol ||b||, atol), or, for a solve whose
@@ -154,7 +154,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
 {
   KSPConvergedReason reason;
   PetscInt           its, k;
-  const PetscScalar *xa, *ha = NULL, *ta;
+  const PetscScalar *xa, *ha = NULL, *ta = NULL;
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
@@ -164,18 +164,18 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   /* The set's points are local to each rank, so restriction is a local gather. */
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
-  PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (AdhSolverThreshold_Private(s)) PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
   PetscCall(VecGetArrayWrite(s->pC, &xc));
   PetscCall(VecGetArrayWrite(s->bC, &bc));
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
     xc[k]         = xa[m];
     bc[k]         = shift - (ha ? ha[m] : 0.0);
-    s->thrC[k]    = ta[m];
+    s->thrC[k]    = ta ? ta[m] : 0.0;
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
   PetscCall(VecRestoreArrayWrite(s->pC, &xc));
-  PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (ta) PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
   if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
@@ -199,23 +199,23 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
 PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 {
   PetscScalar       *pa, *xa = NULL;
-  const PetscScalar *ta;
+  const PetscScalar *ta = NULL;
   PetscInt           n, k, count = 0;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(s->p, &n));
   PetscCall(VecGetArray(s->p, &pa));
   if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (AdhSolverThreshold_Private(s)) PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
   for (k = 0; k < n; k++)
-    if (s->in_set[k] && PetscRealPart(pa[k]) < -PetscRealPart(ta[k])) {
+    if (s->in_set[k] && PetscRealPart(pa[k]) < (ta ? -PetscRealPart(ta[k]) : 0.0)) {
       s->in_set[k] = 0;
       s->left[k]   = 1;
       pa[k]        = 0.0;
       if (xa) xa[k] = 0.0;
       count++;
     }
-  PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  if (ta) PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
   if (s->xunit) PetscCall(VecRestoreArray(s->xunit, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
@@ -303,13 +303,28 @@ PetscErrorCode AdhSolverClearContact_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* u = K p and g = h - d + u for the current state. */
+/* g = h - d + u, u = K p, for the current state (u itself is not kept: see GetDisplacement). */
 PetscErrorCode AdhSolverComputeGap_Private(AdhSolver s)
 {
   PetscFunctionBegin;
-  PetscCall(MatMult(s->K, s->p, s->u));
-  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u));
+  PetscCall(MatMult(s->K, s->p, s->g));
+  PetscCall(VecAXPY(s->g, 1.0, s->h));
   PetscCall(VecShift(s->g, -s->d));
+  PetscFunctionReturn(0);
+}
+
+/* The displacement u = g - h + d of the current state, made when asked for: a grid vector fewer
+   for runs that never look at it. */
+PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver s, Vec *u)
+{
+  PetscFunctionBegin;
+  if (!s->u) {
+    PetscCall(VecDuplicate(s->h, &s->u));
+    PetscCall(PetscObjectSetName((PetscObject)s->u, "displacement"));
+  }
+  PetscCall(VecWAXPY(s->u, -1.0, s->h, s->g));
+  PetscCall(VecShift(s->u, s->d));
+  *u = s->u;
   PetscFunctionReturn(0);
 }
 

@@ -1,4 +1,5 @@
 /* The element grid: Nx x Ny rectangles of hx x hy, distributed by whole rows over the ranks. */
+#include <fftw3-mpi.h>
 #include "adhbem.h"
 
 PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
@@ -63,8 +64,24 @@ PetscErrorCode AdhGridSetUp(AdhGrid g)
   g->hx = g->Lx / g->Nx;
   g->hy = g->Ly / g->Ny;
   /* One process column (m = 1): each rank owns whole rows, so the global ordering is the natural
-     row-major one j*Nx + i, the same as FFTW's, and DMDA balances the rows to within one. */
-  PetscCall(DMDACreate2d(g->comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, g->Nx, g->Ny, 1, size, 1, 0, NULL, NULL, &g->da));
+     row-major one j*Nx + i, the same as FFTW's. The rows are split as FFTW-MPI splits those of an
+     Ny x Nx transform, so an operator on the whole periodic grid reads and writes vectors in place,
+     without a redistribution; where that split would leave a rank without rows, DMDA balances the
+     rows to within one. */
+  {
+    ptrdiff_t n0, s0, n1, s1;
+    PetscInt *ly, rows, fewest;
+
+    PetscCall(AdhInitializePackage());
+    (void)fftw_mpi_local_size_2d_transposed(g->Ny, g->Nx / 2 + 1, g->comm, &n0, &s0, &n1, &s1);
+    rows = (PetscInt)n0;
+    PetscCall(PetscMalloc1(size, &ly));
+    PetscCallMPI(MPI_Allgather(&rows, 1, MPIU_INT, ly, 1, MPIU_INT, g->comm));
+    fewest = ly[0];
+    for (PetscMPIInt r = 1; r < size; r++) fewest = PetscMin(fewest, ly[r]);
+    PetscCall(DMDACreate2d(g->comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, g->Nx, g->Ny, 1, size, 1, 0, NULL, fewest > 0 ? ly : NULL, &g->da));
+    PetscCall(PetscFree(ly));
+  }
   PetscCall(DMSetUp(g->da));
   g->setup = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -106,6 +123,8 @@ PetscErrorCode AdhGridDestroy(AdhGrid *grid)
 {
   PetscFunctionBegin;
   if (!*grid) PetscFunctionReturn(0);
+  PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[0]));
+  PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[1]));
   PetscCall(DMDestroy(&(*grid)->da));
   PetscCall(PetscFree(*grid));
   PetscFunctionReturn(0);

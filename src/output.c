@@ -64,7 +64,7 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
 
 PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt step)
 {
-  Vec          mask;
+  Vec          mask, u;
   PetscScalar *ma;
   PetscInt     n, k;
 
@@ -83,7 +83,8 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
   PetscCall(PetscViewerHDF5PushTimestepping(viewer));
   PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
   PetscCall(VecView(s->p, viewer));
-  PetscCall(VecView(s->u, viewer));
+  PetscCall(AdhSolverGetDisplacement_Private(s, &u));
+  PetscCall(VecView(u, viewer));
   PetscCall(VecView(s->g, viewer));
   PetscCall(VecView(mask, viewer));
   PetscCall(PetscViewerHDF5PopTimestepping(viewer));

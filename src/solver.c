@@ -180,8 +180,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscCall(VecSum(s->h, &sum));
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   PetscCall(AdhSolverClearContact_Private(s));
-  PetscCall(VecSet(s->u, 0.0));
-  PetscCall(VecWAXPY(s->g, 1.0, s->h, s->u)); /* the undeformed gap, g = h - d */
+  PetscCall(VecCopy(s->h, s->g)); /* the undeformed gap, g = h - d */
   PetscCall(VecShift(s->g, -s->d));
   PetscFunctionReturn(0);
 }
@@ -200,15 +199,11 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(DMCreateGlobalVector(s->grid->da, &s->h));
     PetscCall(VecDuplicate(s->h, &s->Sigma_field));
     PetscCall(VecDuplicate(s->h, &s->p));
-    PetscCall(VecDuplicate(s->h, &s->u));
     PetscCall(VecDuplicate(s->h, &s->g));
-    PetscCall(VecDuplicate(s->h, &s->zero));
     PetscCall(PetscObjectSetName((PetscObject)s->h, "profile"));
     PetscCall(PetscObjectSetName((PetscObject)s->p, "pressure"));
-    PetscCall(PetscObjectSetName((PetscObject)s->u, "displacement"));
     PetscCall(PetscObjectSetName((PetscObject)s->g, "gap"));
     PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
-    PetscCall(VecSet(s->zero, 0.0));
     PetscCall(VecSet(s->p, 0.0));
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
     if (s->gamma_file[0] && !s->gamma_field) PetscCall(LoadWorkOfAdhesionField(s));
@@ -264,7 +259,7 @@ PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, V
 {
   PetscFunctionBegin;
   if (p) *p = s->p;
-  if (u) *u = s->u;
+  if (u) PetscCall(AdhSolverGetDisplacement_Private(s, u));
   if (g) *g = s->g;
   if (h) *h = s->h;
   if (Sigma) *Sigma = s->Sigma_field;
@@ -332,7 +327,6 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(VecDestroy(&s->p));
   PetscCall(VecDestroy(&s->u));
   PetscCall(VecDestroy(&s->g));
-  PetscCall(VecDestroy(&s->zero));
   PetscCall(VecDestroy(&s->gamma_field));
   PetscCall(VecDestroy(&s->indenter.z));
   PetscCall(PetscFree(s->in_set));

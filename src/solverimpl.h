@@ -49,7 +49,8 @@ struct _n_AdhSolver {
   /* operators and fields on the grid */
   Mat       K;                /* compliance */
   Mat       S;                /* periodic stiffness: the preconditioner */
-  Vec       h, Sigma_field, p, u, g, zero;
+  Vec       h, Sigma_field, p, g;
+  Vec       u;                /* made when asked for (AdhSolverGetDisplacement_Private) */
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
 
   /* load control */
@@ -128,6 +129,7 @@ PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscR
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);
 PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverClearContact_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);

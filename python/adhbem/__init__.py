@@ -328,7 +328,7 @@ class Solver:
         return _adhbem.solver_critical_stress(self._s)
 
     def _obj(self, name):
-        return _adhbem.solver_objects(self._s)[name]
+        return _adhbem.solver_objects(self._s, name)[name]
 
     pressure = property(lambda self: self._obj("pressure"), doc="pressure Vec (tension < 0)")
     displacement = property(lambda self: self._obj("displacement"), doc="surface displacement u = K p")

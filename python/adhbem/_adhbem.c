@@ -1,6 +1,7 @@
 /* The C half of the Python layer: turns libadhbem objects into real petsc4py objects.
    PETSc errors become petsc4py's PETSc.Error. */
 #define PY_SSIZE_T_CLEAN
+#include <string.h>
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
@@ -274,17 +275,19 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   AdhSolver s;
-  Vec       p, u, g, h, Sigma;
-  Mat       K;
-  IS        is;
-  AdhGrid   grid;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  Vec         p, u = NULL, g, h, Sigma;
+  Mat         K;
+  IS          is;
+  AdhGrid     grid;
+  const char *name = "";
+  if (!PyArg_ParseTuple(args, "O|s", &cap, &name)) return NULL;
   s = solver_get(cap);
-  PyPetscCall(AdhSolverGetFields(s, &p, &u, &g, &h, &Sigma));
+  /* the displacement is computed (and its vector made) only when asked for */
+  PyPetscCall(AdhSolverGetFields(s, &p, strcmp(name, "displacement") ? NULL : &u, &g, &h, &Sigma));
   PyPetscCall(AdhSolverGetCompliance(s, &K));
   PyPetscCall(AdhSolverGetContactSet(s, &is));
   PyPetscCall(AdhSolverGetGrid(s, &grid));
-  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", PyPetscVec_New(u), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", PyPetscVec_New(Sigma), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", PyPetscVec_New(Sigma), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
 }
 
 static PyObject *py_solver_sigma(PyObject *self, PyObject *args)

@@ -80,6 +80,8 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
 /* Lower bound on the smallest eigenvalue of K_CC for any set C of m grid points (periodic: it
    shrinks to zero as C fills the cell, where K_CC becomes singular). */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat, PetscInt m, PetscReal *);
+PETSC_EXTERN PetscErrorCode MatAdhComplianceHasDirectLayout(Mat, PetscBool *);
+PETSC_EXTERN PetscErrorCode MatAdhComplianceMultOnSet(Mat, PetscInt n, const PetscInt local[], Vec xC, Vec yC);
 /* K + c0 (1 1^T)/N: a periodic compliance whose mean mode has the compliance c0 (> 0), which makes
    every K_CC positive definite, the whole cell included; its eigenvalues are K's on mean-free
    vectors and c0. */

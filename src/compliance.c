@@ -71,13 +71,33 @@ typedef struct {
   AdhTransform t;                                     /* shared: data, plans, xfft, toFFT are its */
 } Compliance;
 
+/* Forward transform of the array, the multiplier, backward transform. */
+static PetscErrorCode Convolve(Mat K, Compliance *c)
+{
+  fftw_complex *spec = (fftw_complex *)c->data;
+  ptrdiff_t     k, ncomplex = c->local_n1 * c->n0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
+  fftw_execute(c->forward);
+  PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
+  for (k = 0; k < ncomplex; k++) {
+    spec[k][0] *= c->multiplier[k];
+    spec[k][1] *= c->multiplier[k];
+  }
+  PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
+  fftw_execute(c->backward);
+  PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
+  c->nmult++;
+  PetscCall(PetscLogFlops(4.0 * ncomplex));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
 {
   Compliance        *c;
   const PetscScalar *xa;
   PetscScalar       *ya;
-  fftw_complex      *spec;
-  ptrdiff_t          k, ncomplex;
   PetscInt           r;
 
   PetscFunctionBegin;
@@ -94,20 +114,7 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
     PetscCall(PetscArrayzero(c->data + r * c->stride + c->Nx, c->stride - c->Nx));
   }
   PetscCall(VecRestoreArrayRead(c->toFFT ? c->xfft : x, &xa));
-
-  PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
-  fftw_execute(c->forward);
-  PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
-  spec     = (fftw_complex *)c->data;
-  ncomplex = c->local_n1 * c->n0;
-  for (k = 0; k < ncomplex; k++) {
-    spec[k][0] *= c->multiplier[k];
-    spec[k][1] *= c->multiplier[k];
-  }
-  PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
-  fftw_execute(c->backward);
-  PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
-
+  PetscCall(Convolve(K, c));
   PetscCall(VecGetArrayWrite(c->toFFT ? c->xfft : y, &ya));
   for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->data + r * c->stride, c->Nx));
   PetscCall(VecRestoreArrayWrite(c->toFFT ? c->xfft : y, &ya));
@@ -115,9 +122,44 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
     PetscCall(VecScatterBegin(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
     PetscCall(VecScatterEnd(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
   }
-  c->nmult++;
-  PetscCall(PetscLogFlops(4.0 * ncomplex));
   PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, x, y, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the grid's rows are this operator's transform rows (the periodic grid): then
+   MatAdhComplianceMultOnSet applies it to values on a set of local points directly. */
+PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  *direct = (PetscBool)!c->toFFT;
+  PetscFunctionReturn(0);
+}
+
+/* yC = (K xC) on a set of n local grid points (offsets local[] into this rank's rows), xC zero
+   off the set: R K R^T without spreading onto grid vectors. Needs the direct layout. */
+PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local[], Vec xC, Vec yC)
+{
+  Compliance        *c;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscInt           k;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  PetscCheck(!c->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
+  PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
+  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
+  PetscCall(VecGetArrayRead(xC, &xa));
+  for (k = 0; k < n; k++) c->data[(local[k] / c->Nx) * c->stride + local[k] % c->Nx] = PetscRealPart(xa[k]);
+  PetscCall(VecRestoreArrayRead(xC, &xa));
+  PetscCall(Convolve(K, c));
+  PetscCall(VecGetArrayWrite(yC, &ya));
+  for (k = 0; k < n; k++) ya[k] = c->data[(local[k] / c->Nx) * c->stride + local[k] % c->Nx];
+  PetscCall(VecRestoreArrayWrite(yC, &ya));
+  PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, xC, yC, 0));
   PetscFunctionReturn(0);
 }
 

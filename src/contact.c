@@ -6,10 +6,20 @@
 
 /* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
    set values onto it, apply A, gather them back. K_CC uses the compliance, the preconditioner
-   the stiffness; they share the scatter. */
+   the stiffness; they share the scatter. On a periodic grid the set values go straight into the
+   transform (no grid vectors, no scatter); Kmean adds its mean mode c0 sum(x)/N. */
 PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver s, Mat A, Vec x, Vec y)
 {
   PetscFunctionBegin;
+  if (s->direct_set) {
+    PetscCall(MatAdhComplianceMultOnSet(A == s->Kmean ? s->K : A, s->nset_local, s->set_local, x, y));
+    if (A == s->Kmean) {
+      PetscScalar sum;
+      PetscCall(VecSum(x, &sum));
+      PetscCall(VecShift(y, s->c0 * sum / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny)));
+    }
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecSet(s->op_in, 0.0));
   PetscCall(VecScatterBegin(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
@@ -66,7 +76,9 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   if (Kop != s->Kop) {
     PetscCall(VecDestroy(&s->op_in));
     PetscCall(VecDestroy(&s->op_out));
-    PetscCall(MatCreateVecs(Kop, &s->op_in, &s->op_out));
+    s->direct_set = PETSC_FALSE;
+    if (!s->box) PetscCall(MatAdhComplianceHasDirectLayout(s->K, &s->direct_set));
+    if (!s->direct_set) PetscCall(MatCreateVecs(Kop, &s->op_in, &s->op_out));
     s->Kop = Kop;
     s->Sop = Sop;
   }
@@ -86,7 +98,7 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   if (s->npoints) {
     PetscCall(VecCreateMPI(s->comm, count, s->npoints, &s->pC));
     PetscCall(VecDuplicate(s->pC, &s->bC));
-    PetscCall(VecScatterCreate(s->pC, NULL, s->op_in, s->contact_op, &s->set_scatter));
+    if (!s->direct_set) PetscCall(VecScatterCreate(s->pC, NULL, s->op_in, s->contact_op, &s->set_scatter));
     PetscCall(MatCreateShell(s->comm, count, count, s->npoints, s->npoints, s, &s->Kcc));
     PetscCall(MatShellSetOperation(s->Kcc, MATOP_MULT, (void (*)(void))MatMult_Restricted));
     PetscCall(MatSetOption(s->Kcc, MAT_SPD, PETSC_TRUE));

@@ -79,6 +79,7 @@ struct _n_AdhSolver {
   Mat       Kop, Sop;         /* compliance and stiffness of the window or grid in use (borrowed) */
   PetscReal lambda_set;       /* lower bound on the eigenvalues of K_CC for the current set */
   Vec       op_in, op_out;    /* work vectors on that window or grid */
+  PetscBool direct_set;       /* the periodic grid: set values go straight into the transform */
   VecScatter set_scatter;     /* set values -> that window or grid */
   PetscInt *set_local, nset_local; /* local offsets of this rank's points in the set */
   Vec       pC, bC;           /* pressure and right-hand side on the set */

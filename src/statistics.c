@@ -29,34 +29,42 @@ static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
   const PetscInt  Nx = s->grid->Nx, n = s->nlocal, ym = n / Nx;
   const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt       *parent, *label, *edges = NULL, *all = NULL, *counts = NULL, *offset = NULL;
-  PetscInt        k, i, j, local = 0, total, merged = 0;
+  PetscInt       *first, *rowa, *rowb, *prev, *cur, *swap;
+  PetscInt        k, i, j, local = 0, total, merged = 0, nset = 0;
   PetscMPIInt     rank, size;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
-  PetscCall(PetscMalloc2(n + 1, &parent, n + 1, &label));
-  for (k = 0; k < n; k++) parent[k] = k;
-  for (j = 0; j < ym; j++)
+  /* The union-find runs over the set's points only (numbered in row order), with the set numbers
+     of the row above and of the current row: memory in proportion to the set, not the grid. */
+  for (k = 0; k < n; k++) nset += s->in_set[k] ? 1 : 0;
+  PetscCall(PetscMalloc2(nset + 1, &parent, nset + 1, &label));
+  PetscCall(PetscMalloc3(Nx, &first, Nx, &rowa, Nx, &rowb));
+  prev = rowa;
+  cur  = rowb;
+  for (k = 0; k < nset; k++) parent[k] = k;
+  for (j = 0, k = 0; j < ym; j++) {
     for (i = 0; i < Nx; i++) {
-      k = j * Nx + i;
-      if (!s->in_set[k]) continue;
-      if (i > 0 && s->in_set[k - 1]) Union(parent, k, k - 1);
-      if (j > 0 && s->in_set[k - Nx]) Union(parent, k, k - Nx);
+      cur[i] = s->in_set[j * Nx + i] ? k++ : -1;
+      if (cur[i] < 0) continue;
+      if (i > 0 && cur[i - 1] >= 0) Union(parent, cur[i], cur[i - 1]);
+      if (j > 0 && prev[i] >= 0) Union(parent, cur[i], prev[i]);
     }
-  if (periodic && Nx > 1)
-    for (j = 0; j < ym; j++)
-      if (s->in_set[j * Nx] && s->in_set[j * Nx + Nx - 1]) Union(parent, j * Nx, j * Nx + Nx - 1);
-  /* local cluster numbers 0 .. local-1 at the roots */
-  for (k = 0; k < n; k++)
-    if (s->in_set[k] && Find(parent, k) == k) label[k] = local++;
+    if (periodic && Nx > 1 && cur[0] >= 0 && cur[Nx - 1] >= 0) Union(parent, cur[0], cur[Nx - 1]);
+    if (j == 0) PetscCall(PetscArraycpy(first, cur, Nx));
+    swap = prev; prev = cur; cur = swap;
+  }
+  /* after the loop, prev holds the last row. Local cluster numbers 0 .. local-1 at the roots. */
+  for (k = 0; k < nset; k++)
+    if (Find(parent, k) == k) label[k] = local++;
 
   /* This rank's cluster count, then the labels of its first and last row (-1: not in the set). */
   PetscCall(PetscMalloc1(2 * Nx + 1, &edges));
   edges[0] = local;
   for (i = 0; i < Nx; i++) {
-    edges[1 + i]      = s->in_set[i] ? label[Find(parent, i)] : -1;
-    edges[1 + Nx + i] = s->in_set[(ym - 1) * Nx + i] ? label[Find(parent, (ym - 1) * Nx + i)] : -1;
+    edges[1 + i]      = first[i] >= 0 ? label[Find(parent, first[i])] : -1;
+    edges[1 + Nx + i] = prev[i] >= 0 ? label[Find(parent, prev[i])] : -1;
   }
   if (!rank) PetscCall(PetscMalloc1((2 * Nx + 1) * size, &all));
   PetscCallMPI(MPI_Gather(edges, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, all, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, 0, s->comm));
@@ -88,6 +96,7 @@ static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
   PetscCallMPI(MPI_Bcast(patches, 1, MPIU_INT, 0, s->comm));
   PetscCall(PetscFree(edges));
   PetscCall(PetscFree2(parent, label));
+  PetscCall(PetscFree3(first, rowa, rowb));
   PetscFunctionReturn(0);
 }
 

@@ -113,6 +113,7 @@ typedef struct {
   PetscReal max_tension_ratio;       /* largest tension on the set over the critical stress, max(-p/Sigma) (0 without adhesion) */
   PetscReal area_tension, area_compression; /* area of the set carrying p < 0, and p > 0 */
   PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
+  PetscInt  fft_pairs;               /* forward+backward FFT pairs of the step: compliance and preconditioner */
 } AdhState;
 
 /* The recorded states of a path, and the columns of the curve (name, place in AdhState, whether

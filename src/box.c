@@ -114,15 +114,21 @@ PetscErrorCode AdhSolverDestroyBoxes_Private(AdhSolver s)
 }
 
 /* Compliance applications so far, on the whole grid and on every window. */
-PetscErrorCode AdhSolverMultCount_Private(AdhSolver s, PetscInt *count)
+/* Compliance applications so far, and all FFT pairs (the compliance's and the preconditioner's,
+   on the whole grid and on every window). */
+PetscErrorCode AdhSolverMultCount_Private(AdhSolver s, PetscInt *count, PetscInt *ffts)
 {
-  PetscInt c;
+  PetscInt c, f;
 
   PetscFunctionBegin;
   PetscCall(MatAdhComplianceGetMultCount(s->K, count));
+  PetscCall(MatAdhComplianceGetMultCount(s->S, &f));
   for (PetscInt k = 0; k < s->nboxes; k++) {
     PetscCall(MatAdhComplianceGetMultCount(s->boxes[k].K, &c));
     *count += c;
+    PetscCall(MatAdhComplianceGetMultCount(s->boxes[k].S, &c));
+    f += c;
   }
+  *ffts = *count + f;
   PetscFunctionReturn(0);
 }

@@ -106,10 +106,25 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* The allowed tension: Sigma while adhesive; NULL (zero) while computing a Hertz start. */
-Vec AdhSolverThreshold_Private(AdhSolver s)
+/* The critical stress on the local points: the array of a field, or (a = NULL) one value for
+   all. With threshold, the allowed tension of the current stage: zero while computing a Hertz
+   start. A uniform dgamma keeps no field: a grid vector fewer. */
+PetscErrorCode AdhSolverGetCriticalStress_Private(AdhSolver s, PetscBool threshold, const PetscScalar **a, PetscReal *uniform)
 {
-  return s->adhesive ? s->Sigma_field : NULL;
+  PetscFunctionBegin;
+  *a       = NULL;
+  *uniform = 0.0;
+  if (threshold && !s->adhesive) PetscFunctionReturn(0);
+  if (s->Sigma_field) PetscCall(VecGetArrayRead(s->Sigma_field, a));
+  else *uniform = s->Sigma;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverRestoreCriticalStress_Private(AdhSolver s, const PetscScalar **a)
+{
+  PetscFunctionBegin;
+  if (*a) PetscCall(VecRestoreArrayRead(s->Sigma_field, a));
+  PetscFunctionReturn(0);
 }
 
 /* KSP convergence test: the full tolerance ||r|| <= max(rtol ||b||, atol), or, for a solve whose
@@ -167,6 +182,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   KSPConvergedReason reason;
   PetscInt           its, k;
   const PetscScalar *xa, *ha = NULL, *ta = NULL;
+  PetscReal          tu;
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
@@ -176,18 +192,18 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   /* The set's points are local to each rank, so restriction is a local gather. */
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
-  if (AdhSolverThreshold_Private(s)) PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   PetscCall(VecGetArrayWrite(s->pC, &xc));
   PetscCall(VecGetArrayWrite(s->bC, &bc));
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
     xc[k]         = xa[m];
     bc[k]         = shift - (ha ? ha[m] : 0.0);
-    s->thrC[k]    = ta ? ta[m] : 0.0;
+    s->thrC[k]    = ADH_SIGMA_AT(ta, tu, m);
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
   PetscCall(VecRestoreArrayWrite(s->pC, &xc));
-  if (ta) PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
@@ -212,22 +228,23 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 {
   PetscScalar       *pa, *xa = NULL;
   const PetscScalar *ta = NULL;
+  PetscReal          tu;
   PetscInt           n, k, count = 0;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(s->p, &n));
   PetscCall(VecGetArray(s->p, &pa));
   if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  if (AdhSolverThreshold_Private(s)) PetscCall(VecGetArrayRead(AdhSolverThreshold_Private(s), &ta));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (k = 0; k < n; k++)
-    if (s->in_set[k] && PetscRealPart(pa[k]) < (ta ? -PetscRealPart(ta[k]) : 0.0)) {
+    if (s->in_set[k] && PetscRealPart(pa[k]) < -ADH_SIGMA_AT(ta, tu, k)) {
       s->in_set[k] = 0;
       s->left[k]   = 1;
       pa[k]        = 0.0;
       if (xa) xa[k] = 0.0;
       count++;
     }
-  if (ta) PetscCall(VecRestoreArrayRead(AdhSolverThreshold_Private(s), &ta));
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   if (s->xunit) PetscCall(VecRestoreArray(s->xunit, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
@@ -244,6 +261,7 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 {
   const PetscScalar *ga, *ta, *ra = NULL;
+  PetscReal          tu;
   PetscInt           n, k, count = 0;
   const PetscBool    reach = s->attach == ADH_ATTACH_REACH && s->adhesive;
   /* reach: the gap an element closes under its own critical tension, Sigma K_00. */
@@ -254,9 +272,9 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscCall(AdhSolverComputeGap_Private(s));
   PetscCall(VecGetLocalSize(s->g, &n));
   PetscCall(VecGetArrayRead(s->g, &ga));
-  PetscCall(VecGetArrayRead(s->Sigma_field, &ta));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   if (rate) PetscCall(VecGetArrayRead(rate, &ra));
-#define LIMIT(k) (reach ? PetscRealPart(ta[k]) * K00 : 0.0)
+#define LIMIT(k) (reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0)
   /* Under reach, a point that let go in this step stays off, so the step cannot cycle; where
      Sigma = 0, reach is penetration and the point may come back. */
 #define CANDIDATE(k) (!s->in_set[k] && PetscRealPart(ga[k]) < LIMIT(k) && !(reach && s->left[k] && LIMIT(k) > 0))
@@ -297,7 +315,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 #undef CANDIDATE
 #undef TOUCH
   if (rate) PetscCall(VecRestoreArrayRead(rate, &ra));
-  PetscCall(VecRestoreArrayRead(s->Sigma_field, &ta));
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);

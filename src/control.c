@@ -263,13 +263,13 @@ PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
 /* One step to the target (d, or F under force control), with its counts. */
 PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
 {
-  PetscInt mults0, mults1;
+  PetscInt mults0, mults1, ffts0, ffts1;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
   PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
-  PetscCall(AdhSolverMultCount_Private(s, &mults0));
+  PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
   PetscCall(PetscArrayzero(s->left, s->nlocal));
   s->step_outer = 0;
   s->step_ksp   = 0;
@@ -278,8 +278,9 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
     PetscCall(AdhSolverClearContact_Private(s));
   }
   PetscCall(s->cops.step(s, target));
-  PetscCall(AdhSolverMultCount_Private(s, &mults1));
+  PetscCall(AdhSolverMultCount_Private(s, &mults1, &ffts1));
   s->step_mults = mults1 - mults0;
+  s->step_ffts  = ffts1 - ffts0;
   PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

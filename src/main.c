@@ -31,7 +31,7 @@ int main(int argc, char **argv)
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
   {
-    PetscInt ksp = 0, mults = 0, outer = 0;
+    PetscInt ksp = 0, mults = 0, outer = 0, ffts = 0;
     for (PetscInt k = 0; k < curve->n; k++) {
       const AdhState *st = &curve->state[k];
       if (st->force < Fmin) {
@@ -41,8 +41,9 @@ int main(int argc, char **argv)
       ksp += st->ksp_iterations;
       mults += st->compliance_applications;
       outer += st->outer_iterations;
+      ffts += st->fft_pairs;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults, ffts));
   }
   PetscCall(AdhSolverDestroy(&solver));
   PetscCall(PetscFinalize());

@@ -78,7 +78,11 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/fields"));
   if (step == 0) {
     PetscCall(VecView(s->h, viewer));
-    PetscCall(VecView(s->Sigma_field, viewer));
+    const PetscBool made = (PetscBool)(!s->Sigma_field && !s->Sigma_view);
+    Vec             Sigma;
+    PetscCall(AdhSolverGetCriticalStressVec_Private(s, &Sigma));
+    PetscCall(VecView(Sigma, viewer));
+    if (made) PetscCall(VecDestroy(&s->Sigma_view)); /* made only for this: not kept */
   }
   PetscCall(PetscViewerHDF5PushTimestepping(viewer));
   PetscCall(PetscViewerHDF5SetTimestep(viewer, step));

@@ -12,6 +12,7 @@ const AdhCurveColumn AdhCurveColumns[] = {
   COLUMN(ksp_iterations, PETSC_TRUE),
   COLUMN(seconds, PETSC_FALSE),
   COLUMN(compliance_applications, PETSC_TRUE),
+  COLUMN(fft_pairs, PETSC_TRUE),
   COLUMN(patches, PETSC_TRUE),
   COLUMN(mean_gap, PETSC_FALSE),
   COLUMN(max_tension_ratio, PETSC_FALSE),
@@ -74,7 +75,7 @@ static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
 
 PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 {
-  PetscInt  outer = 0, ksp = 0, mults = 0;
+  PetscInt  outer = 0, ksp = 0, mults = 0, ffts = 0;
   PetscReal dtouch;
 
   PetscFunctionBegin;
@@ -98,10 +99,10 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
     if (s->force_control || target > dtouch) {
       for (PetscInt k = 1; k <= s->steps; k++) {
         PetscCall(AdhSolverStep(s, t0 + (target - t0) * k / s->steps));
-        outer += s->step_outer; ksp += s->step_ksp; mults += s->step_mults;
+        outer += s->step_outer; ksp += s->step_ksp; mults += s->step_mults; ffts += s->step_ffts;
         if (s->pulled_off) break;
       }
-      s->step_outer = outer; s->step_ksp = ksp; s->step_mults = mults;
+      s->step_outer = outer; s->step_ksp = ksp; s->step_mults = mults; s->step_ffts = ffts;
     } else PetscCall(AdhSolverStep(s, target));
   }
   PetscFunctionReturn(0);
@@ -130,6 +131,7 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
   PetscCall(AdhSolverGetState(s, &st->d, &st->force, &st->area, &st->contact_points, &st->outer_iterations, &st->ksp_iterations, &st->compliance_applications));
   PetscCall(AdhStatisticsCompute_Private(s, st));
   st->pulled_off = s->pulled_off;
+  st->fft_pairs  = s->step_ffts;
   PetscFunctionReturn(0);
 }
 

@@ -148,11 +148,33 @@ static PetscErrorCode ComputeCriticalStress(AdhSolver s)
 
   PetscFunctionBegin;
   s->Sigma = s->sigma_fixed > 0 ? s->sigma_fixed : AdhCriticalStress(g->hx, g->hy, s->Estar, s->gamma);
+  PetscCall(VecDestroy(&s->Sigma_view));
   if (s->gamma_field && !(s->sigma_fixed > 0)) {
+    if (!s->Sigma_field) {
+      PetscCall(VecDuplicate(s->h, &s->Sigma_field));
+      PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
+    }
     PetscCall(VecCopy(s->gamma_field, s->Sigma_field));
     PetscCall(VecScale(s->Sigma_field, g->hx * g->hy * s->Estar / AdhChi(g->hx, g->hy)));
     PetscCall(VecSqrtAbs(s->Sigma_field));
-  } else PetscCall(VecSet(s->Sigma_field, s->Sigma));
+  } else PetscCall(VecDestroy(&s->Sigma_field));
+  PetscFunctionReturn(0);
+}
+
+/* The critical stress as a grid vector: the field, or a uniform Sigma made into one on request
+   (kept until Sigma changes). */
+PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver s, Vec *Sigma)
+{
+  PetscFunctionBegin;
+  if (s->Sigma_field) *Sigma = s->Sigma_field;
+  else {
+    if (!s->Sigma_view) {
+      PetscCall(VecDuplicate(s->h, &s->Sigma_view));
+      PetscCall(PetscObjectSetName((PetscObject)s->Sigma_view, "critical_stress"));
+      PetscCall(VecSet(s->Sigma_view, s->Sigma));
+    }
+    *Sigma = s->Sigma_view;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -197,13 +219,11 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
     PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
     PetscCall(DMCreateGlobalVector(s->grid->da, &s->h));
-    PetscCall(VecDuplicate(s->h, &s->Sigma_field));
     PetscCall(VecDuplicate(s->h, &s->p));
     PetscCall(VecDuplicate(s->h, &s->g));
     PetscCall(PetscObjectSetName((PetscObject)s->h, "profile"));
     PetscCall(PetscObjectSetName((PetscObject)s->p, "pressure"));
     PetscCall(PetscObjectSetName((PetscObject)s->g, "gap"));
-    PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
     PetscCall(VecSet(s->p, 0.0));
     PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
     if (s->gamma_file[0] && !s->gamma_field) PetscCall(LoadWorkOfAdhesionField(s));
@@ -262,7 +282,7 @@ PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, V
   if (u) PetscCall(AdhSolverGetDisplacement_Private(s, u));
   if (g) *g = s->g;
   if (h) *h = s->h;
-  if (Sigma) *Sigma = s->Sigma_field;
+  if (Sigma) PetscCall(AdhSolverGetCriticalStressVec_Private(s, Sigma));
   PetscFunctionReturn(0);
 }
 
@@ -324,6 +344,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(ISDestroy(&s->contact));
   PetscCall(VecDestroy(&s->h));
   PetscCall(VecDestroy(&s->Sigma_field));
+  PetscCall(VecDestroy(&s->Sigma_view));
   PetscCall(VecDestroy(&s->p));
   PetscCall(VecDestroy(&s->u));
   PetscCall(VecDestroy(&s->g));

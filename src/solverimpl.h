@@ -49,7 +49,9 @@ struct _n_AdhSolver {
   /* operators and fields on the grid */
   Mat       K;                /* compliance */
   Mat       S;                /* periodic stiffness: the preconditioner */
-  Vec       h, Sigma_field, p, g;
+  Vec       h, p, g;
+  Vec       Sigma_field;      /* critical stress of a dgamma field; NULL for a uniform dgamma (Sigma) */
+  Vec       Sigma_view;       /* a uniform Sigma as a grid vector, made when asked for (AdhSolverGetFields) */
   Vec       u;                /* made when asked for (AdhSolverGetDisplacement_Private) */
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
 
@@ -99,7 +101,7 @@ struct _n_AdhSolver {
   PetscReal d;
   PetscBool adhesive;         /* false while computing a Hertz (dgamma = 0) start */
   PetscInt  max_outer;
-  PetscInt  step_outer, step_ksp, step_mults;
+  PetscInt  step_outer, step_ksp, step_mults, step_ffts;
   PetscLogDouble progress_time;  /* last progress line inside a step (-adh_monitor) */
   PetscReal monitor_interval;   /* seconds between progress lines */
 
@@ -123,9 +125,13 @@ PETSC_INTERN PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver, Mat, Vec, Vec
 PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyBoxes_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverMultCount_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverMultCount_Private(AdhSolver, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhCurveAppend_Private(AdhCurve *, const AdhState *);
-PETSC_INTERN Vec            AdhSolverThreshold_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStress_Private(AdhSolver, PetscBool threshold, const PetscScalar **, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhSolverRestoreCriticalStress_Private(AdhSolver, const PetscScalar **);
+PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec *);
+/* The critical stress of local point k from what AdhSolverGetCriticalStress_Private gave. */
+#define ADH_SIGMA_AT(a, uniform, k) ((a) ? PetscRealPart((a)[k]) : (uniform))
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);

@@ -105,7 +105,7 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   const PetscReal    A = s->grid->hx * s->grid->hy;
   const PetscScalar *pa, *sa;
   PetscScalar        gsum;
-  PetscReal          ratio = 0.0;
+  PetscReal          ratio = 0.0, su;
   PetscInt           k, count[2] = {0, 0};
 
   PetscFunctionBegin;
@@ -113,15 +113,15 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscCall(VecSum(s->g, &gsum));
   st->mean_gap = PetscRealPart(gsum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   PetscCall(VecGetArrayRead(s->p, &pa));
-  PetscCall(VecGetArrayRead(s->Sigma_field, &sa));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &sa, &su));
   for (k = 0; k < s->nlocal; k++) {
-    const PetscReal p = PetscRealPart(pa[k]), Sigma = PetscRealPart(sa[k]);
+    const PetscReal p = PetscRealPart(pa[k]), Sigma = ADH_SIGMA_AT(sa, su, k);
     if (!s->in_set[k]) continue;
     if (p < 0) count[0]++;
     else if (p > 0) count[1]++;
     if (p < 0 && Sigma > 0) ratio = PetscMax(ratio, -p / Sigma);
   }
-  PetscCall(VecRestoreArrayRead(s->Sigma_field, &sa));
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &sa));
   PetscCall(VecRestoreArrayRead(s->p, &pa));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 2, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));

@@ -147,3 +147,18 @@ def test_run_rough_job_on_a_small_grid(tmp_path):
     # adhesion carries tension and dissipates energy; the non-adhesive loop is reversible
     assert Fa.min() < 0 and Fn.min() == 0.0
     assert np.trapz(Fa, da) > 0 and abs(np.trapz(Fn, dn)) < 1e-8 * Fn.max() * np.ptp(dn)
+
+
+@pytest.mark.parametrize("boundary", ["periodic", "free"])
+def test_fft_pairs_count_the_preconditioner(boundary):
+    """fft_pairs counts every transform pair of a step: the compliance's and the
+    preconditioner's, which CG applies at least once per iteration (on the whole grid or on the
+    bounding-box windows)."""
+    n, d1 = 48, depth(48)
+    c = adhbem.Solver(**rough_options(n, boundary=boundary), path=[0.0, d1, -d1]).solve_path()
+    k, kapps, ffts = c["ksp_iterations"], c["compliance_applications"], c["fft_pairs"]
+    say(f"{boundary}: {int(kapps.sum())} compliance applications, {int(k.sum())} KSP iterations, {int(ffts.sum())} FFT pairs")
+    assert k.sum() > 0
+    assert np.all(ffts >= kapps + k)
+    # each solve applies the preconditioner once more than it iterates, and no more
+    assert np.all(ffts <= kapps + k + 2 * c["outer_iterations"] + 2)

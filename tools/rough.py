@@ -86,7 +86,8 @@ def report(a):
     print(f"\nrough surface {a.n} x {a.n} (Hurst {attrs['hurst']:.2g}, rms slope {attrs['realised_rms_slope']:.4g},"
           f" rms height {attrs['realised_rms_height']:.4g}), dgamma = {a.gamma}, {a.np} ranks:"
           f" {seconds:.0f} s of solving, {int(c['ksp_iterations'].sum() + c0['ksp_iterations'].sum())} KSP iterations,"
-          f" {int(c['compliance_applications'].sum() + c0['compliance_applications'].sum())} compliance applications")
+          f" {int(c['compliance_applications'].sum() + c0['compliance_applications'].sum())} compliance applications,"
+          f" {int(c['fft_pairs'].sum() + c0['fft_pairs'].sum())} FFT pairs")
     print(f"{'quantity':<46}{'with adhesion':>16}{'without':>16}")
     rows = [("largest pull-off force (largest tension)", max(0.0, -c["force"].min()), max(0.0, -c0["force"].min())),
             ("force at the largest load", c["force"][k], c0["force"][k0]),

@@ -272,8 +272,9 @@ class Solver:
 
     def curve(self):
         """dict of NumPy arrays, one entry per recorded state: d, force, area, contact_points,
-        outer_iterations, ksp_iterations, seconds, compliance_applications, patches, mean_gap,
-        max_tension_ratio, area_tension, area_compression, pulled_off."""
+        outer_iterations, ksp_iterations, seconds, compliance_applications, fft_pairs (compliance
+        and preconditioner), patches, mean_gap, max_tension_ratio, area_tension,
+        area_compression, pulled_off."""
         import numpy as np
         return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
 

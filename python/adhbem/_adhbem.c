@@ -275,19 +275,19 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   AdhSolver s;
-  Vec         p, u = NULL, g, h, Sigma;
+  Vec         p, u = NULL, g, h, Sigma = NULL;
   Mat         K;
   IS          is;
   AdhGrid     grid;
   const char *name = "";
   if (!PyArg_ParseTuple(args, "O|s", &cap, &name)) return NULL;
   s = solver_get(cap);
-  /* the displacement is computed (and its vector made) only when asked for */
-  PyPetscCall(AdhSolverGetFields(s, &p, strcmp(name, "displacement") ? NULL : &u, &g, &h, &Sigma));
+  /* the displacement and a uniform critical stress are made into vectors only when asked for */
+  PyPetscCall(AdhSolverGetFields(s, &p, strcmp(name, "displacement") ? NULL : &u, &g, &h, strcmp(name, "critical_stress") ? NULL : &Sigma));
   PyPetscCall(AdhSolverGetCompliance(s, &K));
   PyPetscCall(AdhSolverGetContactSet(s, &is));
   PyPetscCall(AdhSolverGetGrid(s, &grid));
-  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", PyPetscVec_New(Sigma), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", Sigma ? PyPetscVec_New(Sigma) : (Py_INCREF(Py_None), Py_None), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
 }
 
 static PyObject *py_solver_sigma(PyObject *self, PyObject *args)

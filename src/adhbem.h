@@ -176,7 +176,8 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetGrid(AdhSolver, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCompliance(AdhSolver, Mat *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetContactSet(AdhSolver, IS *);
 /* Fields on the grid: pressure p, displacement u = K p, gap g = h - d + u, indenter profile h,
-   critical stress Sigma. Borrowed references. */
+   critical stress Sigma. Borrowed references. The solver keeps no u, nor a Sigma vector for a
+   uniform dgamma: asking for them (non-NULL) makes them, current for this state. */
 PETSC_EXTERN PetscErrorCode AdhSolverGetFields(AdhSolver, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriticalStress(AdhSolver, PetscReal *);
 /* The current state: indentation, force, area, points in contact, and the last step's counts

@@ -61,7 +61,8 @@ typedef struct {
   ptrdiff_t   local_n0, local_0_start, local_n1, local_1_start;
   PetscInt    phys_rows;                              /* physical rows inside this rank's FFTW slab */
   double     *data;                                   /* in-place transform array */
-  double     *multiplier;                             /* real kernel spectrum / (n0 n1), transposed layout */
+  double     *multiplier;                             /* real kernel spectrum / (n0 n1), transposed layout; even in ky, so only ky = 0 .. n0/2 are kept */
+  ptrdiff_t   nhalf;                                  /* n0/2 + 1 */
   fftw_plan   forward, backward;
   Vec         xfft;                                   /* physical values in FFTW's row distribution */
   VecScatter  toFFT;                                  /* grid rows -> FFTW's (NULL: they are the same) */
@@ -75,15 +76,23 @@ typedef struct {
 static PetscErrorCode Convolve(Mat K, Compliance *c)
 {
   fftw_complex *spec = (fftw_complex *)c->data;
-  ptrdiff_t     k, ncomplex = c->local_n1 * c->n0;
+  ptrdiff_t     a, k0, ncomplex = c->local_n1 * c->n0;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
   fftw_execute(c->forward);
   PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
-  for (k = 0; k < ncomplex; k++) {
-    spec[k][0] *= c->multiplier[k];
-    spec[k][1] *= c->multiplier[k];
+  for (a = 0; a < c->local_n1; a++) {
+    fftw_complex    *col = spec + a * c->n0;
+    const PetscReal *m   = c->multiplier + a * c->nhalf;
+    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+      col[k0][0] *= m[k0];
+      col[k0][1] *= m[k0];
+    }
+    for (; k0 < c->n0; k0++) {
+      col[k0][0] *= m[c->n0 - k0];
+      col[k0][1] *= m[c->n0 - k0];
+    }
   }
   PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
   fftw_execute(c->backward);
@@ -221,8 +230,9 @@ static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
   }
   fftw_execute(c->forward);
   for (k = 0; k < ncomplex; k++) {
-    c->multiplier[k] = spec[k][0] * scale;
-    lmin             = PetscMin(lmin, spec[k][0]);
+    const ptrdiff_t k0 = k % c->n0;
+    if (k0 <= c->n0 / 2) c->multiplier[(k / c->n0) * c->nhalf + k0] = spec[k][0] * scale;
+    lmin = PetscMin(lmin, spec[k][0]);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
   /* K is a principal submatrix of this symmetric circulant, and so is every K_CC: by Cauchy
@@ -241,11 +251,11 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
   PetscFunctionBegin;
   for (a = 0; a < c->local_n1; a++) {
     const ptrdiff_t kx = c->local_1_start + a; /* 0 .. n1/2: r2c keeps half the x modes */
-    for (k0 = 0; k0 < c->n0; k0++) {
-      const ptrdiff_t ky = k0 <= c->n0 / 2 ? k0 : k0 - c->n0;
+    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+      const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[a * c->n0 + k0] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
+      c->multiplier[a * c->nhalf + k0] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
       if (kx || ky) lmin = PetscMin(lmin, 2.0 / (c->Estar * q));
     }
   }
@@ -267,11 +277,11 @@ static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
   PetscFunctionBegin;
   for (a = 0; a < c->local_n1; a++) {
     const ptrdiff_t kx = c->local_1_start + a;
-    for (k0 = 0; k0 < c->n0; k0++) {
-      const ptrdiff_t ky = k0 <= c->n0 / 2 ? k0 : k0 - c->n0;
+    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+      const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[a * c->n0 + k0] = 0.5 * c->Estar * q * scale;
+      c->multiplier[a * c->nhalf + k0] = 0.5 * c->Estar * q * scale;
     }
   }
   c->lambda_min = 0.5 * c->Estar * qmin;
@@ -375,7 +385,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->phys_rows = c->t->phys_rows;
   c->data = c->t->data; c->forward = c->t->forward; c->backward = c->t->backward;
   c->xfft = c->t->xfft; c->toFFT = c->t->toFFT;
-  nspec = c->local_n1 * c->n0;
+  c->nhalf = c->n0 / 2 + 1;
+  nspec    = c->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
   if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
   else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));

@@ -137,12 +137,24 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
 
 /* Whether the grid's rows are this operator's transform rows (the periodic grid): then
    MatAdhComplianceMultOnSet applies it to values on a set of local points directly. */
+/* The context of a compliance or stiffness shell made here, or an error naming the call. */
+static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c)
+{
+  void (*mult)(void);
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
+  PetscCheck(mult == (void (*)(void))MatMult_Compliance, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a compliance or stiffness Mat of adhbem", caller);
+  PetscCall(MatShellGetContext(K, c));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 {
   Compliance *c;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(GetCompliance(K, "MatAdhComplianceHasDirectLayout", &c));
   *direct = (PetscBool)!c->toFFT;
   PetscFunctionReturn(0);
 }
@@ -157,7 +169,7 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
   PetscInt           k;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(GetCompliance(K, "MatAdhComplianceMultOnSet", &c));
   PetscCheck(!c->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
   PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
@@ -357,8 +369,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscInt    ys, ym, effort = 1;
   PetscReal   timelimit = -1.0;
   PetscBool   tlset;
-  PetscMPIInt size;
-  ptrdiff_t   alloc_local, nspec;
+  ptrdiff_t   nspec;
   Vec         x, e;
 
   PetscFunctionBegin;

@@ -278,6 +278,10 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
     PetscCall(AdhSolverClearContact_Private(s));
   }
   PetscCall(s->cops.step(s, target));
+  if (s->u) { /* a displacement handed out before follows the state */
+    Vec u;
+    PetscCall(AdhSolverGetDisplacement_Private(s, &u));
+  }
   PetscCall(AdhSolverMultCount_Private(s, &mults1, &ffts1));
   s->step_mults = mults1 - mults0;
   s->step_ffts  = ffts1 - ffts0;

@@ -148,8 +148,8 @@ static PetscErrorCode ComputeCriticalStress(AdhSolver s)
 
   PetscFunctionBegin;
   s->Sigma = s->sigma_fixed > 0 ? s->sigma_fixed : AdhCriticalStress(g->hx, g->hy, s->Estar, s->gamma);
-  PetscCall(VecDestroy(&s->Sigma_view));
   if (s->gamma_field && !(s->sigma_fixed > 0)) {
+    PetscCall(VecDestroy(&s->Sigma_view));
     if (!s->Sigma_field) {
       PetscCall(VecDuplicate(s->h, &s->Sigma_field));
       PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
@@ -157,12 +157,15 @@ static PetscErrorCode ComputeCriticalStress(AdhSolver s)
     PetscCall(VecCopy(s->gamma_field, s->Sigma_field));
     PetscCall(VecScale(s->Sigma_field, g->hx * g->hy * s->Estar / AdhChi(g->hx, g->hy)));
     PetscCall(VecSqrtAbs(s->Sigma_field));
-  } else PetscCall(VecDestroy(&s->Sigma_field));
+  } else {
+    PetscCall(VecDestroy(&s->Sigma_field));
+    if (s->Sigma_view) PetscCall(VecSet(s->Sigma_view, s->Sigma)); /* one handed out follows Sigma */
+  }
   PetscFunctionReturn(0);
 }
 
 /* The critical stress as a grid vector: the field, or a uniform Sigma made into one on request
-   (kept until Sigma changes). */
+   (then kept, and set again whenever Sigma is computed). */
 PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver s, Vec *Sigma)
 {
   PetscFunctionBegin;

@@ -162,3 +162,20 @@ def test_fft_pairs_count_the_preconditioner(boundary):
     assert np.all(ffts >= kapps + k)
     # each solve applies the preconditioner once more than it iterates, and no more
     assert np.all(ffts <= kapps + k + 2 * c["outer_iterations"] + 2)
+
+
+def test_displacement_and_critical_stress_vectors_follow_the_state():
+    """The solver keeps no displacement, nor a critical-stress vector for a uniform dgamma, but
+    the Vecs it hands out on request follow later steps: u = K p after every step, Sigma
+    everywhere the scalar."""
+    n, d1 = 48, depth(48)
+    s = adhbem.Solver(**rough_options(n), path=[0.0, d1])
+    s.start(0.0)
+    u, Sigma = s.displacement, s.critical_stress_field
+    s.step(0.5 * d1)
+    s.step(d1)
+    Ku = s.compliance.createVecLeft()
+    s.compliance.mult(s.pressure, Ku)
+    assert s.contact_set.getSize() > 0
+    assert np.allclose(u.getArray(), Ku.getArray(), rtol=0, atol=1e-12 * np.abs(Ku.getArray()).max())
+    assert np.all(Sigma.getArray() == s.critical_stress)

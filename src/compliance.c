@@ -327,7 +327,8 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
     t->stride   = 2 * (t->n1 / 2 + 1);
     alloc_local = fftw_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, grid->comm, &t->local_n0, &t->local_0_start, &t->local_n1, &t->local_1_start);
     t->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
-    PetscCheck(t->data, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
+    if (!t->data) PetscCall(PetscFree(t));
+    PetscCheck(t, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
     /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
        which plans many windows and uses the whole-grid operator rarely, asks for a short limit
        through the grid (solver.c, box.c). An explicit -adh_fftw_timelimit wins. Only on one rank:
@@ -337,7 +338,14 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
     t->forward  = fftw_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->data, (fftw_complex *)t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
     t->backward = fftw_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftw_complex *)t->data, t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
-    PetscCheck(t->forward && t->backward, grid->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", t->n0, t->n1);
+    if (!t->forward || !t->backward) { /* nothing half-made stays behind */
+      const ptrdiff_t n0 = t->n0, n1 = t->n1;
+      if (t->forward) fftw_destroy_plan(t->forward);
+      if (t->backward) fftw_destroy_plan(t->backward);
+      fftw_free(t->data);
+      PetscCall(PetscFree(t));
+      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", n0, n1);
+    }
 
     /* The scatter between the grid's rows and the physical rows of FFTW's slab, where they differ. */
     first_row    = (PetscInt)t->local_0_start;

@@ -23,12 +23,14 @@ const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOU
    The grid holds a reference and each operator one. */
 struct _n_AdhTransform {
   PetscInt   refct;
-  ptrdiff_t  n0, n1, stride, local_n0, local_0_start, local_n1, local_1_start;
-  PetscInt   phys_rows;
-  double    *data;
+  ptrdiff_t  n0, n1;                                  /* transform size: rows (y), columns (x) */
+  ptrdiff_t  stride;                                  /* doubles per row of the in-place real array */
+  ptrdiff_t  local_n0, local_0_start, local_n1, local_1_start;
+  PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
+  double    *data;                                    /* in-place transform array */
   fftw_plan  forward, backward;
-  Vec        xfft;
-  VecScatter toFFT;
+  Vec        xfft;                                    /* physical values in FFTW's row distribution */
+  VecScatter toFFT;                                   /* grid rows -> FFTW's (NULL: they are the same) */
 };
 
 PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
@@ -51,51 +53,43 @@ PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
 typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
 
 typedef struct {
-  MPI_Comm    comm;
-  Kind        kind;
-  AdhBoundary boundary;
-  PetscReal   Estar, hx, hy, Lx, Ly;
-  PetscInt    Nx, Ny;
-  ptrdiff_t   n0, n1;                                 /* transform size: rows (y), columns (x) */
-  ptrdiff_t   stride;                                 /* doubles per row of the in-place real array */
-  ptrdiff_t   local_n0, local_0_start, local_n1, local_1_start;
-  PetscInt    phys_rows;                              /* physical rows inside this rank's FFTW slab */
-  double     *data;                                   /* in-place transform array */
-  double     *multiplier;                             /* real kernel spectrum / (n0 n1), transposed layout; even in ky, so only ky = 0 .. n0/2 are kept */
-  ptrdiff_t   nhalf;                                  /* n0/2 + 1 */
-  fftw_plan   forward, backward;
-  Vec         xfft;                                   /* physical values in FFTW's row distribution */
-  VecScatter  toFFT;                                  /* grid rows -> FFTW's (NULL: they are the same) */
-  PetscReal   lambda_min, diagonal;
-  PetscReal   lambda_meanfree;                        /* smallest eigenvalue on mean-free vectors */
-  PetscInt    nmult;
-  AdhTransform t;                                     /* shared: data, plans, xfft, toFFT are its */
+  MPI_Comm     comm;
+  Kind         kind;
+  AdhBoundary  boundary;
+  PetscReal    Estar, hx, hy, Lx, Ly;
+  PetscInt     Nx, Ny;
+  AdhTransform t;                                     /* the grid's transform of this size (shared) */
+  double      *multiplier;                            /* real kernel spectrum / (n0 n1), transposed layout; even in ky, so only ky = 0 .. n0/2 are kept */
+  ptrdiff_t    nhalf;                                 /* n0/2 + 1 */
+  PetscReal    lambda_min, diagonal;
+  PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
+  PetscInt     nmult;
 } Compliance;
 
 /* Forward transform of the array, the multiplier, backward transform. */
 static PetscErrorCode Convolve(Mat K, Compliance *c)
 {
-  fftw_complex *spec = (fftw_complex *)c->data;
-  ptrdiff_t     a, k0, ncomplex = c->local_n1 * c->n0;
+  fftw_complex *spec = (fftw_complex *)c->t->data;
+  ptrdiff_t     a, k0, ncomplex = c->t->local_n1 * c->t->n0;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
-  fftw_execute(c->forward);
+  fftw_execute(c->t->forward);
   PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
-  for (a = 0; a < c->local_n1; a++) {
-    fftw_complex    *col = spec + a * c->n0;
+  for (a = 0; a < c->t->local_n1; a++) {
+    fftw_complex    *col = spec + a * c->t->n0;
     const PetscReal *m   = c->multiplier + a * c->nhalf;
-    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
       col[k0][0] *= m[k0];
       col[k0][1] *= m[k0];
     }
-    for (; k0 < c->n0; k0++) {
-      col[k0][0] *= m[c->n0 - k0];
-      col[k0][1] *= m[c->n0 - k0];
+    for (; k0 < c->t->n0; k0++) {
+      col[k0][0] *= m[c->t->n0 - k0];
+      col[k0][1] *= m[c->t->n0 - k0];
     }
   }
   PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
-  fftw_execute(c->backward);
+  fftw_execute(c->t->backward);
   PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
   c->nmult++;
   PetscCall(PetscLogFlops(4.0 * ncomplex));
@@ -112,74 +106,118 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, x, y, 0));
-  if (c->toFFT) {
-    PetscCall(VecScatterBegin(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(c->toFFT, x, c->xfft, INSERT_VALUES, SCATTER_FORWARD));
+  if (c->t->toFFT) {
+    PetscCall(VecScatterBegin(c->t->toFFT, x, c->t->xfft, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(c->t->toFFT, x, c->t->xfft, INSERT_VALUES, SCATTER_FORWARD));
   }
-  if (c->phys_rows < c->local_n0) PetscCall(PetscArrayzero(c->data + c->phys_rows * c->stride, (c->local_n0 - c->phys_rows) * c->stride));
-  PetscCall(VecGetArrayRead(c->toFFT ? c->xfft : x, &xa));
-  for (r = 0; r < c->phys_rows; r++) {
-    PetscCall(PetscArraycpy(c->data + r * c->stride, xa + r * c->Nx, c->Nx));
-    PetscCall(PetscArrayzero(c->data + r * c->stride + c->Nx, c->stride - c->Nx));
+  if (c->t->phys_rows < c->t->local_n0) PetscCall(PetscArrayzero(c->t->data + c->t->phys_rows * c->t->stride, (c->t->local_n0 - c->t->phys_rows) * c->t->stride));
+  PetscCall(VecGetArrayRead(c->t->toFFT ? c->t->xfft : x, &xa));
+  for (r = 0; r < c->t->phys_rows; r++) {
+    PetscCall(PetscArraycpy(c->t->data + r * c->t->stride, xa + r * c->Nx, c->Nx));
+    PetscCall(PetscArrayzero(c->t->data + r * c->t->stride + c->Nx, c->t->stride - c->Nx));
   }
-  PetscCall(VecRestoreArrayRead(c->toFFT ? c->xfft : x, &xa));
+  PetscCall(VecRestoreArrayRead(c->t->toFFT ? c->t->xfft : x, &xa));
   PetscCall(Convolve(K, c));
-  PetscCall(VecGetArrayWrite(c->toFFT ? c->xfft : y, &ya));
-  for (r = 0; r < c->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->data + r * c->stride, c->Nx));
-  PetscCall(VecRestoreArrayWrite(c->toFFT ? c->xfft : y, &ya));
-  if (c->toFFT) {
-    PetscCall(VecScatterBegin(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
-    PetscCall(VecScatterEnd(c->toFFT, c->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGetArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
+  for (r = 0; r < c->t->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->t->data + r * c->t->stride, c->Nx));
+  PetscCall(VecRestoreArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
+  if (c->t->toFFT) {
+    PetscCall(VecScatterBegin(c->t->toFFT, c->t->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(c->t->toFFT, c->t->xfft, y, INSERT_VALUES, SCATTER_REVERSE));
   }
   PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, x, y, 0));
   PetscFunctionReturn(0);
 }
 
-/* Whether the grid's rows are this operator's transform rows (the periodic grid): then
-   MatAdhComplianceMultOnSet applies it to values on a set of local points directly. */
-/* The context of a compliance or stiffness shell made here, or an error naming the call. */
-static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c)
+/* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
+   force control the mean pressure is given, so the mean displacement can be carried by any c0 and
+   subtracted afterwards; with it every K_CC, the whole cell included, is positive definite. */
+typedef struct {
+  Mat       K;
+  PetscReal c0, N;
+} MeanCompliance;
+
+static PetscErrorCode MatMult_MeanCompliance(Mat A, Vec x, Vec y)
+{
+  MeanCompliance *m;
+  PetscScalar     sum;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &m));
+  PetscCall(VecSum(x, &sum));
+  PetscCall(MatMult(m->K, x, y));
+  PetscCall(VecShift(y, m->c0 * sum / m->N));
+  PetscFunctionReturn(0);
+}
+
+/* The compliance or stiffness shell behind K (K itself, or the one a mean compliance wraps, then
+   with the wrapper's context), or an error naming the call. */
+static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c, MeanCompliance **mean)
 {
   void (*mult)(void);
 
   PetscFunctionBegin;
+  *mean = NULL;
   PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
-  PetscCheck(mult == (void (*)(void))MatMult_Compliance, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a compliance or stiffness Mat of adhbem", caller);
+  if (mult == (void (*)(void))MatMult_MeanCompliance) {
+    PetscCall(MatShellGetContext(K, mean));
+    K = (*mean)->K;
+    PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
+  }
+  PetscCheck(mult == (void (*)(void))MatMult_Compliance, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a compliance, stiffness or mean compliance Mat of adhbem", caller);
   PetscCall(MatShellGetContext(K, c));
   PetscFunctionReturn(0);
 }
 
+/* Whether the grid's rows are this operator's transform rows (the periodic grid): then
+   MatAdhComplianceMultOnSet applies it to values on a set of local points directly. */
 PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(GetCompliance(K, "MatAdhComplianceHasDirectLayout", &c));
-  *direct = (PetscBool)!c->toFFT;
+  PetscCall(GetCompliance(K, "MatAdhComplianceHasDirectLayout", &c, &mean));
+  *direct = (PetscBool)!c->t->toFFT;
   PetscFunctionReturn(0);
 }
 
-/* yC = (K xC) on a set of n local grid points (offsets local[] into this rank's rows), xC zero
-   off the set: R K R^T without spreading onto grid vectors. Needs the direct layout. */
+/* yC = (K xC) on a set of n local grid points (increasing offsets local[] into this rank's rows),
+   xC zero off the set: R K R^T without spreading onto grid vectors. Needs the direct layout. */
 PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local[], Vec xC, Vec yC)
 {
   Compliance        *c;
+  MeanCompliance    *mean;
   const PetscScalar *xa;
   PetscScalar       *ya;
-  PetscInt           k;
+  PetscInt           k, r;
+  double            *data;
 
   PetscFunctionBegin;
-  PetscCall(GetCompliance(K, "MatAdhComplianceMultOnSet", &c));
-  PetscCheck(!c->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
+  PetscCall(GetCompliance(K, "MatAdhComplianceMultOnSet", &c, &mean));
+  PetscCheck(!c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
-  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
+  data = c->t->data;
+  PetscCall(PetscArrayzero(data, c->t->local_n0 * c->t->stride));
+  /* point local[k] of row r sits at local[k] + r (stride - Nx) in the padded rows */
   PetscCall(VecGetArrayRead(xC, &xa));
-  for (k = 0; k < n; k++) c->data[(local[k] / c->Nx) * c->stride + local[k] % c->Nx] = PetscRealPart(xa[k]);
+  for (k = 0, r = 0; k < n; k++) {
+    while (local[k] >= (r + 1) * c->Nx) r++;
+    data[local[k] + r * (c->t->stride - c->Nx)] = PetscRealPart(xa[k]);
+  }
   PetscCall(VecRestoreArrayRead(xC, &xa));
   PetscCall(Convolve(K, c));
   PetscCall(VecGetArrayWrite(yC, &ya));
-  for (k = 0; k < n; k++) ya[k] = c->data[(local[k] / c->Nx) * c->stride + local[k] % c->Nx];
+  for (k = 0, r = 0; k < n; k++) {
+    while (local[k] >= (r + 1) * c->Nx) r++;
+    ya[k] = data[local[k] + r * (c->t->stride - c->Nx)];
+  }
   PetscCall(VecRestoreArrayWrite(yC, &ya));
+  if (mean) {
+    PetscScalar sum;
+    PetscCall(VecSum(xC, &sum));
+    PetscCall(VecShift(yC, mean->c0 * sum / mean->N));
+  }
   PetscCall(PetscLogEventEnd(ADH_ComplianceMult, K, xC, yC, 0));
   PetscFunctionReturn(0);
 }
@@ -205,7 +243,7 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
   if (isascii) {
     if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; FFTW-MPI r2c transform %td x %td (transposed spectrum)\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->n1, c->n0));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; FFTW-MPI r2c transform %td x %td (transposed spectrum)\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->t->n1, c->t->n0));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g (mean-free vectors: %g), multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, (double)c->lambda_meanfree, c->nmult));
   }
   PetscFunctionReturn(0);
@@ -227,23 +265,23 @@ static PetscErrorCode MatDestroy_Compliance(Mat K)
    directions, so its spectrum is real); transformed once to give the multiplier. */
 static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
 {
-  fftw_complex *spec = (fftw_complex *)c->data;
-  ptrdiff_t     r, i, k, ncomplex = c->local_n1 * c->n0;
-  PetscReal     scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), lmin = PETSC_MAX_REAL;
+  fftw_complex *spec = (fftw_complex *)c->t->data;
+  ptrdiff_t     r, i, k, ncomplex = c->t->local_n1 * c->t->n0;
+  PetscReal     scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), lmin = PETSC_MAX_REAL;
 
   PetscFunctionBegin;
-  PetscCall(PetscArrayzero(c->data, c->local_n0 * c->stride));
-  for (r = 0; r < c->local_n0; r++) {
-    ptrdiff_t row = c->local_0_start + r, dj = row <= c->Ny ? row : row - c->n0;
-    for (i = 0; i < c->n1; i++) {
-      ptrdiff_t di = i <= c->Nx ? i : i - c->n1;
-      c->data[r * c->stride + i] = AdhLoveCoefficient(di * c->hx, dj * c->hy, c->hx, c->hy, c->Estar);
+  PetscCall(PetscArrayzero(c->t->data, c->t->local_n0 * c->t->stride));
+  for (r = 0; r < c->t->local_n0; r++) {
+    ptrdiff_t row = c->t->local_0_start + r, dj = row <= c->Ny ? row : row - c->t->n0;
+    for (i = 0; i < c->t->n1; i++) {
+      ptrdiff_t di = i <= c->Nx ? i : i - c->t->n1;
+      c->t->data[r * c->t->stride + i] = AdhLoveCoefficient(di * c->hx, dj * c->hy, c->hx, c->hy, c->Estar);
     }
   }
-  fftw_execute(c->forward);
+  fftw_execute(c->t->forward);
   for (k = 0; k < ncomplex; k++) {
-    const ptrdiff_t k0 = k % c->n0;
-    if (k0 <= c->n0 / 2) c->multiplier[(k / c->n0) * c->nhalf + k0] = spec[k][0] * scale;
+    const ptrdiff_t k0 = k % c->t->n0;
+    if (k0 <= c->t->n0 / 2) c->multiplier[(k / c->t->n0) * c->nhalf + k0] = spec[k][0] * scale;
     lmin = PetscMin(lmin, spec[k][0]);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
@@ -258,12 +296,12 @@ static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
 static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
 {
   ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), lmin = PETSC_MAX_REAL;
+  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), lmin = PETSC_MAX_REAL;
 
   PetscFunctionBegin;
-  for (a = 0; a < c->local_n1; a++) {
-    const ptrdiff_t kx = c->local_1_start + a; /* 0 .. n1/2: r2c keeps half the x modes */
-    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+  for (a = 0; a < c->t->local_n1; a++) {
+    const ptrdiff_t kx = c->t->local_1_start + a; /* 0 .. n1/2: r2c keeps half the x modes */
+    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
       const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
@@ -284,12 +322,12 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
 static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
 {
   ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->n0 * (PetscReal)c->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly);
+  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly);
 
   PetscFunctionBegin;
-  for (a = 0; a < c->local_n1; a++) {
-    const ptrdiff_t kx = c->local_1_start + a;
-    for (k0 = 0; k0 <= c->n0 / 2; k0++) {
+  for (a = 0; a < c->t->local_n1; a++) {
+    const ptrdiff_t kx = c->t->local_1_start + a;
+    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
       const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
@@ -398,14 +436,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->Estar    = Estar;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
   PetscCall(GridGetTransform(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, &c->t));
-  c->n0 = c->t->n0; c->n1 = c->t->n1; c->stride = c->t->stride;
-  c->local_n0 = c->t->local_n0; c->local_0_start = c->t->local_0_start;
-  c->local_n1 = c->t->local_n1; c->local_1_start = c->t->local_1_start;
-  c->phys_rows = c->t->phys_rows;
-  c->data = c->t->data; c->forward = c->t->forward; c->backward = c->t->backward;
-  c->xfft = c->t->xfft; c->toFFT = c->t->toFFT;
-  c->nhalf = c->n0 / 2 + 1;
-  nspec    = c->local_n1 * c->nhalf;
+  c->nhalf = c->t->n0 / 2 + 1;
+  nspec    = c->t->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
   if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
   else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
@@ -485,27 +517,6 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
   PetscCall(MatShellGetContext(K, &c));
   if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
-  PetscFunctionReturn(0);
-}
-
-/* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
-   force control the mean pressure is given, so the mean displacement can be carried by any c0 and
-   subtracted afterwards; with it every K_CC, the whole cell included, is positive definite. */
-typedef struct {
-  Mat       K;
-  PetscReal c0, N;
-} MeanCompliance;
-
-static PetscErrorCode MatMult_MeanCompliance(Mat A, Vec x, Vec y)
-{
-  MeanCompliance *m;
-  PetscScalar     sum;
-
-  PetscFunctionBegin;
-  PetscCall(MatShellGetContext(A, &m));
-  PetscCall(VecSum(x, &sum));
-  PetscCall(MatMult(m->K, x, y));
-  PetscCall(VecShift(y, m->c0 * sum / m->N));
   PetscFunctionReturn(0);
 }
 

@@ -6,18 +6,14 @@
 
 /* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
    set values onto it, apply A, gather them back. K_CC uses the compliance, the preconditioner
-   the stiffness; they share the scatter. On a periodic grid the set values go straight into the
-   transform (no grid vectors, no scatter); Kmean adds its mean mode c0 sum(x)/N. */
+   the stiffness; they share the scatter. Where the operators' transforms use the grid's own
+   rows (a periodic grid), the set values go straight into the transform: no grid vectors, no
+   scatter. */
 PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver s, Mat A, Vec x, Vec y)
 {
   PetscFunctionBegin;
   if (s->direct_set) {
-    PetscCall(MatAdhComplianceMultOnSet(A == s->Kmean ? s->K : A, s->nset_local, s->set_local, x, y));
-    if (A == s->Kmean) {
-      PetscScalar sum;
-      PetscCall(VecSum(x, &sum));
-      PetscCall(VecShift(y, s->c0 * sum / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny)));
-    }
+    PetscCall(MatAdhComplianceMultOnSet(A, s->nset_local, s->set_local, x, y));
     PetscFunctionReturn(0);
   }
   PetscCall(VecSet(s->op_in, 0.0));
@@ -68,20 +64,27 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscCall(ISGetSize(s->contact, &s->npoints));
 
   PetscCall(AdhSolverSelectOperator_Private(s));
-  PetscCall(AdhSolverOperatorIndices_Private(s, count, idx, opidx));
-  PetscCall(ISDestroy(&s->contact_op));
-  PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_OWN_POINTER, &s->contact_op));
   Kop = s->box ? s->box->K : s->Kmean ? s->Kmean : s->K;
   Sop = s->box ? s->box->S : s->S;
-  if (Kop != s->Kop) {
+  if (Kop != s->Kop || Sop != s->Sop) {
+    PetscBool kdirect = PETSC_FALSE, sdirect = PETSC_FALSE;
     PetscCall(VecDestroy(&s->op_in));
     PetscCall(VecDestroy(&s->op_out));
-    s->direct_set = PETSC_FALSE;
-    if (!s->box) PetscCall(MatAdhComplianceHasDirectLayout(s->K, &s->direct_set));
+    /* the direct path takes the set's offsets in the grid's rows, so not on a window */
+    if (!s->box) {
+      PetscCall(MatAdhComplianceHasDirectLayout(Kop, &kdirect));
+      PetscCall(MatAdhComplianceHasDirectLayout(Sop, &sdirect));
+    }
+    s->direct_set = (PetscBool)(kdirect && sdirect);
     if (!s->direct_set) PetscCall(MatCreateVecs(Kop, &s->op_in, &s->op_out));
     s->Kop = Kop;
     s->Sop = Sop;
   }
+  PetscCall(ISDestroy(&s->contact_op));
+  if (!s->direct_set) {
+    PetscCall(AdhSolverOperatorIndices_Private(s, count, idx, opidx));
+    PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_OWN_POINTER, &s->contact_op));
+  } else PetscCall(PetscFree(opidx));
 
   /* A lower bound on the eigenvalues of K_CC for the certified stop (zero: no certification). */
   if (Kop == s->Kmean) {

@@ -344,3 +344,21 @@ def test_more_ranks_than_rows(comm):
     K = adhbem.compliance((4, size), (1.0, 0.5), 1.0, comm=comm)
     D = dense_free(4, size, 0.25, 0.5 / size, 1.0)
     assert rel_max(apply(K, np.ones((size, 4))), (D @ np.ones(4 * size)).reshape(size, 4)) < 1e-12
+
+
+@pytest.mark.mpi
+@pytest.mark.ranks3
+def test_solver_whole_grid_equals_windows(comm):
+    """A JKR unloading curve with K_CC applied on the whole grid (-adh_box 0: straight into the
+    transform on one rank, through grid vectors and a scatter on several) equals the one on
+    bounding-box windows: the same contact sets, forces to rounding."""
+    import math
+    from common import gamma_for
+    n = 48
+    ac = 10.0 / n
+    opts = dict(n=n, size=1.0, gamma=gamma_for(ac), radius=1.0, path=[(1.3 * ac) ** 2, -0.02], steps=12)
+    c_box = adhbem.Solver(comm=comm, **opts).solve_path()
+    c_grid = adhbem.Solver(comm=comm, box=False, **opts).solve_path()
+    assert np.array_equal(c_box["contact_points"], c_grid["contact_points"])
+    assert np.max(np.abs(c_box["force"] - c_grid["force"])) <= 1e-9 * np.max(np.abs(c_box["force"]))
+    assert c_box["contact_points"][0] > 0 and math.isfinite(c_box["force"].min())

@@ -114,6 +114,7 @@ typedef struct {
   PetscReal area_tension, area_compression; /* area of the set carrying p < 0, and p > 0 */
   PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
   PetscInt  fft_pairs;               /* forward+backward FFT pairs of the step: compliance and preconditioner */
+  PetscReal detach_ratio;            /* the detachment criterion's largest load over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
 } AdhState;
 
 /* The recorded states of a path, and the columns of the curve (name, place in AdhState, whether
@@ -144,6 +145,15 @@ typedef const char *AdhControlType;
 PETSC_EXTERN PetscErrorCode AdhControlRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetControlType(AdhSolver, AdhControlType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetControlType(AdhSolver, AdhControlType *);
+/* Detachment criterion, a registered type: "pohrt-popov" (the paper's p < -Sigma) or
+   "crack-closure" (the edge's energy release rate by virtual crack closure, G > dgamma, which does
+   not depend on the edge's direction on the grid). */
+typedef const char *AdhCriterionType;
+#define ADHCRITERIONPOHRTPOPOV   "pohrt-popov"
+#define ADHCRITERIONCRACKCLOSURE "crack-closure"
+PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
+PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
+PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);
 /* Replaces the scalar work of adhesion by a field dgamma(x,y) (a Vec on the grid). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver, Vec);
 /* What a topography holds: the height z of the surface, as instruments, SurfaceTopography and

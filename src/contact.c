@@ -1,6 +1,6 @@
-/* The pieces of one step of the Pohrt-Popov algorithm (DESIGN.md section 4), shared by the load
-   controls (control.c): the solve on the contact set, detach (every point with p < -Sigma at once,
-   the paper's rule) and attach (points off the set that penetrate, tested after a solve with no
+/* The pieces of one step of the Pohrt-Popov algorithm, shared by the load controls (control.c):
+   the solve on the contact set, detach (every point the detachment criterion lets go, at once:
+   criterion.c) and attach (points off the set that penetrate, tested after a solve with no
    violators; one full multiply u = K p per attach test). */
 #include "solverimpl.h"
 
@@ -211,7 +211,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
   s->threshold_local = s->thrC;
-  s->certify_solve   = (PetscBool)(certify && s->certify && s->lambda_set > 0);
+  s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.certifiable && s->lambda_set > 0);
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
   PetscCall(KSPSolve(s->ksp, s->bC, s->pC));
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
@@ -223,34 +223,6 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(VecRestoreArrayRead(s->pC, &xa));
   PetscCall(VecRestoreArray(x, &xw));
   PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The KSP solve on the contact set (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_ksp_rtol, -adh_ksp_max_it, -adh_ksp_monitor)", s->npoints, (double)s->d, KSPConvergedReasons[reason], its);
-  PetscFunctionReturn(0);
-}
-
-/* Remove every point of the set whose tension exceeds its critical stress, p < -Sigma. */
-PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
-{
-  PetscScalar       *pa, *xa = NULL;
-  const PetscScalar *ta = NULL;
-  PetscReal          tu;
-  PetscInt           n, k, count = 0;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(s->p, &n));
-  PetscCall(VecGetArray(s->p, &pa));
-  if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
-  for (k = 0; k < n; k++)
-    if (s->in_set[k] && PetscRealPart(pa[k]) < -ADH_SIGMA_AT(ta, tu, k)) {
-      s->in_set[k] = 0;
-      s->left[k]   = 1;
-      pa[k]        = 0.0;
-      if (xa) xa[k] = 0.0;
-      count++;
-    }
-  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  if (s->xunit) PetscCall(VecRestoreArray(s->xunit, &xa));
-  PetscCall(VecRestoreArray(s->p, &pa));
-  PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);
 }
 

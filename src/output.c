@@ -176,6 +176,8 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "start", PETSC_STRING, AdhStarts[s->start]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "control", PETSC_STRING, s->control_type));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion", PETSC_STRING, s->criterion_type));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius", PETSC_REAL, &s->criterion_radius));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));

@@ -12,6 +12,7 @@ static PetscErrorCode AdhFinalizePackage(void)
   PetscFunctionBegin;
   fftw_mpi_cleanup();
   PetscCall(AdhControlDestroyList_Private());
+  PetscCall(AdhCriterionDestroyList_Private());
   AdhPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -19,6 +19,7 @@ const AdhCurveColumn AdhCurveColumns[] = {
   COLUMN(area_tension, PETSC_FALSE),
   COLUMN(area_compression, PETSC_FALSE),
   COLUMN(pulled_off, PETSC_TRUE),
+  COLUMN(detach_ratio, PETSC_FALSE),
 };
 const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
 

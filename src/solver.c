@@ -29,6 +29,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
+  s->criterion_radius = 3.0;
   s->monitor_interval = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
@@ -37,6 +38,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscCall(AdhGridCreate(comm, &s->grid));
   s->grid->fftw_timelimit = 0.01; /* free boundary: many windows to plan, few whole-grid multiplies */
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
+  PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONPOHRTPOPOV));
   *solver = s;
   PetscFunctionReturn(0);
 }
@@ -55,8 +57,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscInt          n = 256;
   PetscReal         path[256];
   PetscBool         set, certify = s->certify;
-  char              control[64];
-  PetscFunctionList controls;
+  char              control[64], criterion[64];
+  PetscFunctionList controls, criteria;
   PetscBool         monitor_set;
 
   PetscFunctionBegin;
@@ -73,6 +75,10 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(AdhControlGetList_Private(&controls));
   PetscCall(PetscOptionsFList("-adh_control", "Load control: displacement (-adh_path holds indentations d) or force (-adh_path holds forces F = sum of p hx hy; on a periodic cell, mean pressure x cell area)", "AdhSolverSetControlType", controls, s->control_type, control, sizeof(control), &set));
   if (set) PetscCall(AdhSolverSetControlType(s, control));
+  PetscCall(AdhCriterionGetList_Private(&criteria));
+  PetscCall(PetscOptionsFList("-adh_criterion", "Detachment criterion: pohrt-popov (the paper: p < -Sigma) or crack-closure (energy release rate of the edge > dgamma, independent of the edge's direction on the grid)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
+  if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
+  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: the release rate is averaged over the edge points within this many grid spacings (the staircase of a curved edge makes single points unrepresentative)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
   PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force)", "AdhSolver", path, &n, &set));
   if (set) {
     PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
@@ -98,6 +104,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (s->monitor && !monitor_set) PetscCall(AdhSolverMonitorSet(s, AdhSolverMonitorDefault, NULL, NULL));
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
+  PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
   PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
@@ -320,7 +327,8 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && !s->force_control ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s\n", s->criterion_type));
   if (s->ksp) PetscCall(KSPView(s->ksp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);
@@ -333,6 +341,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscFunctionBegin;
   if (!s) PetscFunctionReturn(0);
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
+  if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));

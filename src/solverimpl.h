@@ -21,6 +21,14 @@ typedef struct {
   PetscErrorCode (*destroy)(AdhSolver);
 } AdhControlOps;
 
+/* What a detachment criterion does (criterion.c): evaluate the current state, removing the points
+   that let go (detach) or giving the largest load over its limit on the set (ratio). */
+typedef struct {
+  PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
+  PetscErrorCode (*destroy)(AdhSolver);
+  PetscBool certifiable; /* decided by p alone: the certified early stop of intermediate solves applies */
+} AdhCriterionOps;
+
 /* A copy of the contact state (force control: the state before a step, for pull-off). */
 typedef struct {
   char     *in_set;
@@ -67,6 +75,12 @@ struct _n_AdhSolver {
   PetscReal     pulloff_rtol;   /* force control: resolution of the pull-off force */
   AdhSavedState previous;       /* force control: the state before the current step */
   PetscBool     pulled_off;     /* the last step ended in pull-off */
+
+  /* detachment criterion */
+  char            criterion_type[64];
+  AdhCriterionOps crops;
+  void           *crdata;
+  PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
@@ -134,6 +148,10 @@ PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec
 #define ADH_SIGMA_AT(a, uniform, k) ((a) ? PetscRealPart((a)[k]) : (uniform))
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
+PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
+PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);

@@ -128,5 +128,6 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   st->area_tension      = count[0] * A;
   st->area_compression  = count[1] * A;
   st->max_tension_ratio = ratio;
+  PetscCall(AdhSolverDetachRatio_Private(s, &st->detach_ratio));
   PetscFunctionReturn(0);
 }

@@ -97,9 +97,9 @@ def unload(s, d0, scale, on_threshold):
 
 
 def wave(N, m, n, criterion, alpha=0.3):
-    """Johnson's wavy surface with wavevector (m, n) on an N x N periodic cell (N x 4 along an axis:
+    """Johnson's wavy surface with wavevector (m, n) on an N x N periodic cell (N x 16 along an axis:
     the solution does not depend on y)."""
-    ny = 4 if n == 0 else N
+    ny = 16 if n == 0 else N
     L, hgrid = 1.0, 1.0 / N
     lam = L / math.hypot(m, n)
     D = 0.01 * lam

@@ -29,7 +29,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
-  s->criterion_radius = 3.0;
+  s->criterion_radius = 6.0;
   s->monitor_interval = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;

@@ -74,24 +74,24 @@ def test_hertz_force_control():
 _jkr = {}
 
 
-def jkr_force_run(N, ratio, steps=20):
+def jkr_force_run(N, ratio, steps=20, criterion="pohrt-popov"):
     """Force-controlled JKR unloading on the N x N grid (L = 1) with a_c = ratio h: Hertz start at
     the Hertz force of a = 1.3 a_c, then to -1.2 F_adh (the leg ends at pull-off). Cached."""
-    key = (N, ratio, steps)
+    key = (N, ratio, steps, criterion)
     if key not in _jkr:
         ac = ratio / N
         gamma = gamma_for(ac)
         ac, dc, Fadh = jkr_scales(gamma)
         t0 = time.perf_counter()
         s = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz", control="force",
-                          path=[hertz_force(1.3 * ac), -1.2 * Fadh], steps=steps)
+                          path=[hertz_force(1.3 * ac), -1.2 * Fadh], steps=steps, criterion=criterion)
         c = s.solve_path()
         seconds = time.perf_counter() - t0
         k = int(np.argmin(c["force"]))
         run = dict(c=c, ac=ac, dc=dc, Fadh=Fadh, gamma=gamma, seconds=seconds, k=k,
                    tension=-c["force"][k] / Fadh, an=radius(c["area"][k]) / ac)
         run["error"] = run["tension"] - 1
-        say(f"  [force-controlled JKR N={N} a_c/h={ratio}: {len(c['d'])} states, largest tension"
+        say(f"  [force-controlled JKR N={N} a_c/h={ratio} ({criterion}): {len(c['d'])} states, largest tension"
             f" {run['tension']:.4f} F_adh at a/a_c = {run['an']:.4f} ({c['contact_points'][k]} points),"
             f" {int(c['ksp_iterations'].sum())} KSP its, {seconds:.2f} s]")
         _jkr[key] = run
@@ -134,6 +134,20 @@ def test_jkr_pull_off_force_control():
     assert abs(fine["error"]) < 0.03
     assert abs(fine["an"] - 1) < 0.05
     assert abs(agree) < 0.03
+
+
+def test_jkr_pull_off_force_control_crack_closure():
+    """With the crack-closure criterion the sphere comes off within 3% of F_adh already at
+    a_c/h = 50 (0.987 F_adh; the paper's criterion: 1.031) and at a/a_c within 5%."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial measurement")
+    say("")
+    run = jkr_force_run(160, 50.0, criterion="crack-closure")
+    c = run["c"]
+    last = len(c["d"]) - 1
+    assert c["pulled_off"][last] == 1 and run["k"] == last and c["contact_points"][last] > 0
+    assert abs(run["error"]) < 0.03
+    assert abs(run["an"] - 1) < 0.05
 
 
 # ---- Pull-off, then reloading from first touch -------------------------------------------------------

@@ -62,38 +62,48 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt step)
+/* The fields chosen by -adh_fields of the current state, curve row `state`, as the next frame of
+   /fields (HDF5 timestepping); the first frame also holds the profile h and the critical stress.
+   /fields/state (written at close) maps frames to curve rows. */
+PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt state)
 {
-  Vec          mask, u;
-  PetscScalar *ma;
-  PetscInt     n, k;
+  const PetscInt frame = s->nfield_states;
+  Vec            u;
 
   PetscFunctionBegin;
-  PetscCall(VecDuplicate(s->p, &mask));
-  PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
-  PetscCall(VecGetLocalSize(mask, &n));
-  PetscCall(VecGetArrayWrite(mask, &ma));
-  for (k = 0; k < n; k++) ma[k] = s->in_set[k] ? 1.0 : 0.0;
-  PetscCall(VecRestoreArrayWrite(mask, &ma));
+  if (!s->fields) PetscFunctionReturn(0);
+  PetscCall(PetscRealloc((frame + 1) * sizeof(PetscInt), &s->field_states));
+  s->field_states[s->nfield_states++] = state;
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/fields"));
-  if (step == 0) {
-    PetscCall(VecView(s->h, viewer));
+  if (frame == 0) {
     const PetscBool made = (PetscBool)(!s->Sigma_field && !s->Sigma_view);
     Vec             Sigma;
+    PetscCall(VecView(s->h, viewer));
     PetscCall(AdhSolverGetCriticalStressVec_Private(s, &Sigma));
     PetscCall(VecView(Sigma, viewer));
     if (made) PetscCall(VecDestroy(&s->Sigma_view)); /* made only for this: not kept */
   }
   PetscCall(PetscViewerHDF5PushTimestepping(viewer));
-  PetscCall(PetscViewerHDF5SetTimestep(viewer, step));
-  PetscCall(VecView(s->p, viewer));
-  PetscCall(AdhSolverGetDisplacement_Private(s, &u));
-  PetscCall(VecView(u, viewer));
-  PetscCall(VecView(s->g, viewer));
-  PetscCall(VecView(mask, viewer));
+  PetscCall(PetscViewerHDF5SetTimestep(viewer, frame));
+  if (s->fields & ADH_FIELD_PRESSURE) PetscCall(VecView(s->p, viewer));
+  if (s->fields & ADH_FIELD_DISPLACEMENT) {
+    PetscCall(AdhSolverGetDisplacement_Private(s, &u));
+    PetscCall(VecView(u, viewer));
+  }
+  if (s->fields & ADH_FIELD_GAP) PetscCall(VecView(s->g, viewer));
+  if (s->fields & ADH_FIELD_CONTACT) {
+    Vec          mask;
+    PetscScalar *ma;
+    PetscCall(VecDuplicate(s->p, &mask));
+    PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
+    PetscCall(VecGetArrayWrite(mask, &ma));
+    for (PetscInt k = 0; k < s->nlocal; k++) ma[k] = s->in_set[k] ? 1.0 : 0.0;
+    PetscCall(VecRestoreArrayWrite(mask, &ma));
+    PetscCall(VecView(mask, viewer));
+    PetscCall(VecDestroy(&mask));
+  }
   PetscCall(PetscViewerHDF5PopTimestepping(viewer));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscCall(VecDestroy(&mask));
   PetscFunctionReturn(0);
 }
 
@@ -248,6 +258,16 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   PetscCall(PetscFree(column));
   PetscCall(WriteRealArray(s, *viewer, "path", s->npath, s->path));
   PetscCall(PetscViewerHDF5PopGroup(*viewer));
+  if (s->nfield_states) {
+    PetscCall(PetscMalloc1(s->nfield_states, &column));
+    for (PetscInt k = 0; k < s->nfield_states; k++) column[k] = (PetscReal)s->field_states[k];
+    PetscCall(PetscViewerHDF5PushGroup(*viewer, "/fields"));
+    PetscCall(WriteRealArray(s, *viewer, "state", s->nfield_states, column));
+    PetscCall(PetscViewerHDF5PopGroup(*viewer));
+    PetscCall(PetscFree(column));
+  }
+  PetscCall(PetscFree(s->field_states));
+  s->nfield_states = 0;
   PetscCall(PetscViewerDestroy(viewer));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
@@ -265,7 +285,7 @@ PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 
   PetscFunctionBegin;
   PetscCall(AdhOutputOpen_Private(s, file, &viewer));
-  if (s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, 0));
+  PetscCall(AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0)));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE}));
   PetscCall(AdhOutputClose_Private(s, file, &viewer));
   PetscFunctionReturn(0);

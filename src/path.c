@@ -177,7 +177,7 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   PetscCall(PetscTime(&t1));
   st.seconds = (PetscReal)(t1 - t0);
   PetscCall(AdhCurveAppend_Private(&s->curve, &st));
-  if (viewer && s->fields) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
+  if (viewer && (s->curve.n - 1) % s->fields_stride == 0) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
   for (PetscInt k = 0; k < s->nmonitors; k++) {
     /* a monitor that fails on one rank stops every rank, not just that one */
     int err = (int)s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]);

@@ -30,6 +30,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
   s->criterion_radius = 6.0;
+  s->fields_stride    = 1;
   s->monitor_interval = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
@@ -51,6 +52,40 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
   s->grid->prefix = s->prefix;
   PetscFunctionReturn(0);
 }
+
+/* -adh_fields [LIST]: the fields to write, a comma-separated list of pressure, displacement, gap,
+   contact; given alone (or all, 1, true) all four, none (or 0, false) no fields. Inside
+   PetscOptionsBegin/End, so that -help shows it. */
+static const char *const AdhFieldNames[] = {"pressure", "displacement", "gap", "contact"};
+
+static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, AdhSolver s)
+{
+  char      value[256] = "", *item, *rest;
+  PetscBool set, all, none;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsString("-adh_fields", "Fields written for the states (pressure, displacement, gap, contact; comma-separated; alone: all four)", "AdhSolver", "", value, sizeof(value), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscStrInList(value, "all,1,true,yes", ',', &all));
+  PetscCall(PetscStrInList(value, "none,0,false,no", ',', &none));
+  if (!value[0] || all) s->fields = ADH_FIELD_ALL;
+  else if (none) s->fields = 0;
+  else {
+    s->fields = 0;
+    for (item = strtok_r(value, ",", &rest); item; item = strtok_r(NULL, ",", &rest)) {
+      PetscInt k;
+      for (k = 0; k < 4; k++) {
+        PetscBool same;
+        PetscCall(PetscStrcmp(item, AdhFieldNames[k], &same));
+        if (same) break;
+      }
+      PetscCheck(k < 4, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_fields: unknown field '%s' (pressure, displacement, gap, contact, or all)", item);
+      s->fields |= 1 << k;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+#define ParseFields(s) ParseFields_Private(PetscOptionsObject, s)
 
 PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
 {
@@ -97,7 +132,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   monitor_set = s->monitor;
   PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolverMonitorSet", s->monitor, &s->monitor, NULL));
   PetscCall(PetscOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
-  PetscCall(PetscOptionsBool("-adh_fields", "Write pressure, displacement, gap and contact mask of every step", "AdhSolver", s->fields, &s->fields, NULL));
+  PetscCall(ParseFields(s));
+  PetscCall(PetscOptionsInt("-adh_fields_stride", "Write the fields of every K-th state (0, K, 2K, ...)", "AdhSolver", s->fields_stride, &s->fields_stride, NULL));
   PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
   PetscOptionsEnd();
   s->certify = certify;
@@ -105,6 +141,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
   PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
+  PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
   PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
@@ -342,6 +379,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   if (!s) PetscFunctionReturn(0);
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
+  PetscCall(PetscFree(s->field_states));
   PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));

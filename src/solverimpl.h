@@ -38,6 +38,9 @@ typedef struct {
 
 #define ADH_MAX_MONITORS 8
 
+/* The fields a results file can hold (-adh_fields), as bits. */
+enum { ADH_FIELD_PRESSURE = 1, ADH_FIELD_DISPLACEMENT = 2, ADH_FIELD_GAP = 4, ADH_FIELD_CONTACT = 8, ADH_FIELD_ALL = 15 };
+
 struct _n_AdhSolver {
   MPI_Comm    comm;
   char       *prefix;
@@ -129,7 +132,10 @@ struct _n_AdhSolver {
   PetscReal *path;
   PetscInt   npath, steps;
   AdhStart   start;
-  PetscBool  monitor, fields;
+  PetscBool  monitor;
+  PetscInt   fields;            /* -adh_fields: which fields to write, a mask of ADH_FIELD_* */
+  PetscInt   fields_stride;     /* -adh_fields_stride: fields of every K-th state */
+  PetscInt  *field_states, nfield_states; /* the curve rows whose fields the file holds */
   char       output[PETSC_MAX_PATH_LEN];
   AdhCurve   curve;
 };

@@ -154,6 +154,9 @@ typedef const char *AdhCriterionType;
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);
+/* The memory the run needs, estimated from the grid, the boundary and the criterion (bytes, all
+   ranks together and the ranks on this node). */
+PETSC_EXTERN PetscErrorCode AdhSolverEstimateMemory(AdhSolver, PetscLogDouble *total, PetscLogDouble *node);
 /* Replaces the scalar work of adhesion by a field dgamma(x,y) (a Vec on the grid). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver, Vec);
 /* What a topography holds: the height z of the surface, as instruments, SurfaceTopography and

@@ -31,6 +31,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->pulloff_rtol     = 1e-3;
   s->criterion_radius = 6.0;
   s->fields_stride    = 1;
+  s->memory_check     = PETSC_TRUE;
   s->monitor_interval = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
@@ -126,6 +127,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: penetration (g < 0) or reach (g < Sigma K_00)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force (bisection between the last force carried and the first one not)", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
@@ -265,6 +267,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     /* A periodic cell does every multiply on the whole grid: plan it without a time limit (a
        limited plan transforms 2x slower at 512^2). */
     if (s->boundary == ADH_BOUNDARY_PERIODIC) s->grid->fftw_timelimit = -1.0;
+    PetscCall(AdhSolverCheckResources_Private(s));
     PetscCall(AdhGridSetUp(s->grid));
     PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
     PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
@@ -366,6 +369,11 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s\n", s->criterion_type));
+  {
+    PetscLogDouble total, node;
+    PetscCall(AdhSolverEstimateMemory(s, &total, &node));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate: %.3g MB in all, %.3g MB on this node\n", total / 1e6, node / 1e6));
+  }
   if (s->ksp) PetscCall(KSPView(s->ksp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);

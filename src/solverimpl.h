@@ -84,6 +84,7 @@ struct _n_AdhSolver {
   AdhCriterionOps crops;
   void           *crdata;
   PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings */
+  PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
@@ -155,6 +156,7 @@ PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);

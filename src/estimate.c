@@ -1,0 +1,60 @@
+/* What a run needs before anything is allocated: the indices the PETSc build can address, and an
+   estimate of the memory, so that a grid that cannot fit stops with one clear message instead of
+   an allocation failure deep inside FFTW or PETSc (or the kernel's OOM killer).
+
+   The memory model is per grid point, measured with -memory_view (1024^2, one rank): a periodic
+   cell holds h, p, g (24 B), the FFT array (8), the half-spectrum multipliers (4), the DMDA maps
+   (12) and the CG vectors on the contact set (up to 50 where everything touches): 100 B. A free
+   boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u, G and three ghosted
+   vectors (40). Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
+#include <unistd.h>
+#include "solverimpl.h"
+
+static const PetscLogDouble AdhRankBaseBytes = 50e6;
+
+/* Bytes per grid point of this run (see above). */
+static PetscLogDouble BytesPerPoint(AdhSolver s)
+{
+  PetscLogDouble b = s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0;
+  PetscBool      cc;
+
+  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
+  return b + (cc ? 40.0 : 0.0);
+}
+
+/* The estimate for the whole run (all ranks) and for the ranks on this node. */
+PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, PetscLogDouble *node)
+{
+  const PetscLogDouble points = (PetscLogDouble)s->grid->Nx * (PetscLogDouble)s->grid->Ny;
+  PetscMPIInt          size, node_size;
+  MPI_Comm             shared;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
+  PetscCallMPI(MPI_Comm_size(shared, &node_size));
+  PetscCallMPI(MPI_Comm_free(&shared));
+  if (total) *total = points * BytesPerPoint(s) + size * AdhRankBaseBytes;
+  if (node) *node = (points * BytesPerPoint(s) / size + AdhRankBaseBytes) * node_size;
+  PetscFunctionReturn(0);
+}
+
+/* Refuse a grid that the build's indices cannot address, or that clearly does not fit into the
+   memory of a node (-adh_memory_check 0 skips the latter). */
+PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
+{
+  const AdhGrid        g      = s->grid;
+  const PetscBool      padded = (PetscBool)(s->boundary == ADH_BOUNDARY_FREE);
+  const PetscLogDouble points = (padded ? 4.0 : 1.0) * (PetscLogDouble)g->Nx * (PetscLogDouble)g->Ny;
+  PetscLogDouble       node, physical;
+  long                 pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+
+  PetscFunctionBegin;
+  PetscCheck(points <= (PetscLogDouble)PETSC_MAX_INT, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " %s %.3g grid points, more than this PETSc build's %d-bit indices address (%" PetscInt_FMT "); use a PETSc built with 64-bit indices, or a smaller grid", g->Nx, g->Ny, padded ? "needs a zero-padded transform (free boundary) of" : "has", (double)points, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
+  if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
+  physical = (PetscLogDouble)pages * (PetscLogDouble)page;
+  PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
+  PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
+  PetscFunctionReturn(0);
+}

@@ -154,6 +154,8 @@ typedef const char *AdhCriterionType;
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);
+/* The names of adhbem's own options, without the leading '-' and the prefix (adh_gamma, ...). */
+PETSC_EXTERN PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names);
 /* The memory the run needs, estimated from the grid, the boundary and the criterion (bytes, all
    ranks together and the ranks on this node). */
 PETSC_EXTERN PetscErrorCode AdhSolverEstimateMemory(AdhSolver, PetscLogDouble *total, PetscLogDouble *node);

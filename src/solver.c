@@ -264,6 +264,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
 
   PetscFunctionBegin;
   if (!s->setup) {
+    PetscCall(AdhSolverCheckOptions_Private(s));
     /* A periodic cell does every multiply on the whole grid: plan it without a time limit (a
        limited plan transforms 2x slower at 512^2). */
     if (s->boundary == ADH_BOUNDARY_PERIODIC) s->grid->fftw_timelimit = -1.0;

@@ -157,6 +157,7 @@ PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscR
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);

@@ -206,8 +206,22 @@ class Solver:
             self._forget_options()
             raise
 
+    @staticmethod
+    def _check_option_names(options):
+        # A misspelled keyword is an error, as for any Python function (the C check would name
+        # the option with this solver's internal prefix).
+        import difflib
+        known = [name[len("adh_"):] for name in _adhbem.option_names()]
+        for key in options:
+            if key in known or key.startswith(("ksp_", "pc_")):
+                continue
+            near = difflib.get_close_matches(key, known, n=1)
+            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            raise TypeError(f"Solver: unknown option {key!r}{hint}")
+
     def _init(self, comm, options):
         global _solver_count
+        self._check_option_names(options)
         _solver_count += 1
         self.prefix = f"adhbem{_solver_count}_"
         comm = PETSc.COMM_WORLD if comm is None else comm

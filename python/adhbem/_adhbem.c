@@ -102,6 +102,17 @@ static PyObject *py_love(PyObject *self, PyObject *args)
   return PyFloat_FromDouble(AdhLoveCoefficient(x, y, hx, hy, Estar));
 }
 
+static PyObject *py_option_names(PyObject *self, PyObject *args)
+{
+  PetscInt           n;
+  const char *const *names;
+  PyObject          *l;
+  if (AdhGetOptionNames(&n, &names)) return NULL;
+  l = PyList_New(n);
+  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(l, k, PyUnicode_FromString(names[k]));
+  return l;
+}
+
 static PyObject *py_chi(PyObject *self, PyObject *args)
 {
   double hx, hy;
@@ -364,6 +375,7 @@ static PyMethodDef methods[] = {
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
+  {"option_names", py_option_names, METH_NOARGS, "option_names() -> adhbem's own option names (adh_gamma, ...)"},
   {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, mult_count)"},
   {"love_coefficient", py_love, METH_VARARGS, "love_coefficient(x, y, hx, hy, Estar) -> displacement per unit pressure"},
   {"chi", py_chi, METH_VARARGS, "chi(hx, hy) -> element self-energy factor"},

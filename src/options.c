@@ -1,0 +1,86 @@
+/* adhbem's own options: their names, and the check that every -adh_ option given is one of them,
+   so that a misspelled option (-adh_gama 0.01) stops the run, naming the nearest option, instead
+   of running with the default. The options of the solver's KSP and PC (-adh_ksp_*, -adh_pc_*)
+   are PETSc's, which reads some only during solves: they are not checked. tests/test_options.py
+   keeps this list equal to what -help shows. */
+#include "solverimpl.h"
+
+static const char *const AdhOptionNames[] = {
+  "adh_n", "adh_size", "adh_E_star", "adh_E1", "adh_E2", "adh_nu1", "adh_nu2", "adh_gamma", "adh_gamma_field",
+  "adh_gamma_field_dataset", "adh_critical_stress", "adh_boundary", "adh_indenter", "adh_radius", "adh_punch_radius",
+  "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
+  "adh_rms_height", "adh_rms_slope", "adh_rolloff_wavelength", "adh_cutoff_wavelength", "adh_seed", "adh_control",
+  "adh_criterion", "adh_criterion_radius", "adh_path", "adh_steps", "adh_start", "adh_attach", "adh_certify",
+  "adh_memory_check", "adh_box", "adh_max_outer", "adh_pulloff_rtol", "adh_monitor", "adh_monitor_interval",
+  "adh_fields", "adh_fields_stride", "adh_output", "adh_fftw_planner", "adh_fftw_timelimit", "adh_view",
+};
+
+PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names)
+{
+  PetscFunctionBegin;
+  *n     = (PetscInt)PETSC_STATIC_ARRAY_LENGTH(AdhOptionNames);
+  *names = AdhOptionNames;
+  PetscFunctionReturn(0);
+}
+
+/* Levenshtein distance of two short strings (option names). */
+static PetscInt EditDistance(const char *a, const char *b)
+{
+  PetscInt la = (PetscInt)strlen(a), lb = (PetscInt)strlen(b), row[128], i, j;
+
+  if (lb >= 127) return PETSC_MAX_INT;
+  for (j = 0; j <= lb; j++) row[j] = j;
+  for (i = 1; i <= la; i++) {
+    PetscInt diag = row[0];
+    row[0]        = i;
+    for (j = 1; j <= lb; j++) {
+      const PetscInt up = row[j];
+      row[j]            = PetscMin(PetscMin(row[j] + 1, row[j - 1] + 1), diag + (a[i - 1] != b[j - 1]));
+      diag              = up;
+    }
+  }
+  return row[lb];
+}
+
+/* Every option under this solver's prefix that starts with adh_ and that no part of adhbem reads
+   is an error; the message names the nearest known option. */
+PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver s)
+{
+  PetscInt    n, k, o;
+  char      **names, **values;
+  size_t      plen = 0;
+  const char *prefix = s->prefix ? s->prefix : "";
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrlen(prefix, &plen));
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (k = 0; k < n; k++) {
+    const char *name = names[k][0] == '-' ? names[k] + 1 : names[k];
+    PetscBool   ours, theirs = PETSC_FALSE, known = PETSC_FALSE;
+    PetscInt    best = PETSC_MAX_INT, nearest = 0;
+    PetscCall(PetscStrncmp(name, prefix, plen, &ours));
+    if (!ours) continue;
+    name += plen;
+    PetscCall(PetscStrncmp(name, "adh_", 4, &ours));
+    if (!ours) continue;
+    for (const char *const *p = (const char *const[]){"adh_ksp_", "adh_pc_", NULL}; *p && !theirs; p++) PetscCall(PetscStrncmp(name, *p, strlen(*p), &theirs));
+    if (theirs) continue;
+    for (o = 0; o < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(AdhOptionNames) && !known; o++) {
+      const PetscInt dist = EditDistance(name, AdhOptionNames[o]);
+      PetscCall(PetscStrcasecmp(name, AdhOptionNames[o], &known));
+      if (dist < best) {
+        best    = dist;
+        nearest = o;
+      }
+    }
+    if (known) continue;
+    {
+      char message[512];
+      PetscCall(PetscSNPrintf(message, sizeof(message), "Unknown option -%s%s (did you mean -%s%s?); build/adhbem -help lists the options", prefix, name, prefix, AdhOptionNames[nearest]));
+      PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+      SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
+    }
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}

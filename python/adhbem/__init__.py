@@ -18,8 +18,9 @@ from petsc4py import PETSc  # noqa: E402
 
 from . import _adhbem  # noqa: E402
 from ._adhbem import chi, chi_square, critical_stress, love_coefficient  # noqa: E402,F401
+from .results import Results, load  # noqa: E402,F401
 
-__all__ = ["PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows", "set_local_rows",
+__all__ = ["PETSc", "Solver", "load", "Results", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows", "set_local_rows",
            "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
 
 

@@ -11,16 +11,16 @@ static PetscErrorCode PartName(const char file[], char part[], size_t len)
   PetscFunctionReturn(0);
 }
 
-/* FILE.h5 -> FILE.csv; other names get .csv appended. */
-static PetscErrorCode CSVName(const char file[], char csv[], size_t len)
+/* FILE.h5 -> FILE.ext (csv, xmf); other names get .ext appended. */
+static PetscErrorCode SiblingName(const char file[], const char ext[], char name[], size_t len)
 {
   size_t n;
 
   PetscFunctionBegin;
   PetscCall(PetscStrlen(file, &n));
   if (n > 3 && !strcmp(file + n - 3, ".h5")) {
-    PetscCall(PetscSNPrintf(csv, len, "%.*s.csv", (int)(n - 3), file));
-  } else PetscCall(PetscSNPrintf(csv, len, "%s.csv", file));
+    PetscCall(PetscSNPrintf(name, len, "%.*s.%s", (int)(n - 3), file, ext));
+  } else PetscCall(PetscSNPrintf(name, len, "%s.%s", file, ext));
   PetscFunctionReturn(0);
 }
 
@@ -238,6 +238,64 @@ static PetscErrorCode WriteCSV(AdhSolver s, const char csv[])
   PetscFunctionReturn(0);
 }
 
+/* FILE.xmf beside FILE.h5 when it has fields: an XDMF description that ParaView (and VisIt) open
+   as a time series over the states with fields, cell data on the grid of elements: the fields of
+   each state (hyperslabs of the timestepped datasets), the profile h, the critical stress, and
+   the heights of a rough surface. The time of a frame is its curve row. */
+static PetscErrorCode WriteXDMF(AdhSolver s, const char file[])
+{
+  const AdhGrid g = s->grid;
+  PetscMPIInt   rank;
+  char          xmf[PETSC_MAX_PATH_LEN + 8], part[PETSC_MAX_PATH_LEN + 16];
+  const char   *h5 = strrchr(file, '/') ? strrchr(file, '/') + 1 : file; /* relative: the pair can move */
+  const char   *names[4] = {"pressure", "displacement", "gap", "contact"};
+  const PetscInt T = s->nfield_states, Nx = g->Nx, Ny = g->Ny;
+  int           ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(SiblingName(file, "xmf", xmf, sizeof(xmf)));
+  PetscCall(PartName(xmf, part, sizeof(part)));
+  if (!rank) {
+    FILE *fp = fopen(part, "w");
+    if (fp) {
+      /* cell corners: element (i, j) has its centre at ((i - Nx/2) hx, (j - Ny/2) hy) */
+      const double x0 = (double)((-(Nx / 2) - 0.5) * g->hx), y0 = (double)((-(Ny / 2) - 0.5) * g->hy);
+      fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+      fprintf(fp, "  <Grid Name=\"states\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+      for (PetscInt t = 0; t < T; t++) {
+        fprintf(fp, "   <Grid Name=\"state %" PetscInt_FMT "\" GridType=\"Uniform\">\n", s->field_states[t]);
+        fprintf(fp, "    <Time Value=\"%" PetscInt_FMT "\"/>\n", s->field_states[t]);
+        fprintf(fp, "    <Topology TopologyType=\"2DCoRectMesh\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\"/>\n", Ny + 1, Nx + 1);
+        fprintf(fp, "    <Geometry GeometryType=\"ORIGIN_DXDY\">\n     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n", y0, x0);
+        fprintf(fp, "     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n    </Geometry>\n", (double)g->hy, (double)g->hx);
+        for (PetscInt f = 0; f < 4; f++) {
+          if (!(s->fields & (1 << f))) continue;
+          fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", names[f]);
+          fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\">\n", Ny, Nx);
+          fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", t, Ny, Nx);
+          fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, h5, names[f]);
+          fprintf(fp, "     </DataItem>\n    </Attribute>\n");
+        }
+        for (PetscInt f = 0; f < 3; f++) {
+          const char *fixed[3] = {"profile", "critical_stress", "topography"}, *where[3] = {"/fields/profile", "/fields/critical_stress", "/topography"};
+          if (f == 2 && s->indenter.type != ADH_INDENTER_ROUGH) continue;
+          fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", fixed[f]);
+          fprintf(fp, "     <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n    </Attribute>\n", Ny, Nx, h5, where[f]);
+        }
+        fprintf(fp, "   </Grid>\n");
+      }
+      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+      ok = !ferror(fp);
+      ok = (fclose(fp) == 0) && ok;
+      ok = ok && rename(part, xmf) == 0;
+    } else ok = 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", xmf);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
 {
   const AdhCurve *c = &s->curve;
@@ -266,16 +324,18 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
     PetscCall(PetscViewerHDF5PopGroup(*viewer));
     PetscCall(PetscFree(column));
   }
-  PetscCall(PetscFree(s->field_states));
-  s->nfield_states = 0;
+
   PetscCall(PetscViewerDestroy(viewer));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
   if (!rank) ok = rename(part, file) == 0;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s", part, file);
-  PetscCall(CSVName(file, csv, sizeof(csv)));
+  PetscCall(SiblingName(file, "csv", csv, sizeof(csv)));
   PetscCall(WriteCSV(s, csv));
+  if (s->nfield_states) PetscCall(WriteXDMF(s, file));
+  PetscCall(PetscFree(s->field_states));
+  s->nfield_states = 0;
   PetscFunctionReturn(0);
 }
 

@@ -70,3 +70,80 @@ def test_bad_fields_options(tmp_path, args, says):
     r = subprocess.run(RUN + args + ["-adh_output", str(out)], capture_output=True, text=True)
     assert r.returncode != 0 and says in r.stderr + r.stdout
     assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())
+
+
+def _xdmf_frames(xmf):
+    """(time, {name: (hdf5 path, frame or None)}) per grid of an XDMF file, with xml.etree."""
+    import xml.etree.ElementTree as ET
+    frames = []
+    for grid in ET.parse(xmf).getroot().iter("Grid"):
+        if grid.get("GridType") != "Uniform":
+            continue
+        attrs = {}
+        for a in grid.iter("Attribute"):
+            items = list(a.iter("DataItem"))
+            if items[0].get("ItemType") == "HyperSlab":
+                start = int(items[1].text.split()[0])
+                attrs[a.get("Name")] = (items[2].text.strip(), start)
+            else:
+                attrs[a.get("Name")] = (items[0].text.strip(), None)
+        frames.append((float(grid.find("Time").get("Value")), attrs))
+    return frames
+
+
+def test_xdmf_describes_the_fields(tmp_path):
+    """FILE.xmf beside FILE.h5: one grid per state with fields, each attribute pointing at the
+    right frame of the right dataset (read here with h5py)."""
+    serial_only()
+    import h5py
+    fields, curve = run(tmp_path, "x", "-adh_fields", "pressure,gap,contact", "-adh_fields_stride", "2")
+    xmf = tmp_path / "x.xmf"
+    frames = _xdmf_frames(xmf)
+    assert [t for t, _ in frames] == list(fields["state"])
+    with h5py.File(tmp_path / "x.h5", "r") as f:
+        for k, (t, attrs) in enumerate(frames):
+            assert set(attrs) == {"pressure", "gap", "contact", "profile", "critical_stress"}
+            for name, (where, frame) in attrs.items():
+                file, dataset = where.split(":")
+                assert file == "x.h5"
+                data = f[dataset][()] if frame is None else f[dataset][frame]
+                ref = fields[name][k] if frame is not None else fields[name]
+                assert frame is None or frame == k
+                assert np.array_equal(data, ref)
+    # no fields, no XDMF
+    run(tmp_path, "plain")
+    assert not (tmp_path / "plain.xmf").exists()
+
+
+def test_paraview_reads_the_xdmf(tmp_path):
+    """ParaView's own XDMF reader (pvpython, when installed: apt-get install paraview
+    python3-paraview) sees every state as a time step with the values of the HDF5 file."""
+    serial_only()
+    import shutil
+    import json
+    pvpython = shutil.which("pvpython")
+    if not pvpython:
+        pytest.skip("pvpython (Debian: paraview, python3-paraview) is not installed")
+    fields, curve = run(tmp_path, "pv", "-adh_fields")
+    script = tmp_path / "read.py"
+    script.write_text(
+        "import sys, json\n"
+        "from paraview.simple import XDMFReader, UpdatePipeline\n"
+        "from paraview import servermanager as sm\n"
+        "from vtk.numpy_interface import dataset_adapter as dsa\n"
+        "r = XDMFReader(FileNames=[sys.argv[1]])\n"
+        "out = {'times': list(r.TimestepValues), 'frames': []}\n"
+        "for t in r.TimestepValues:\n"
+        "    UpdatePipeline(time=t, proxy=r)\n"
+        "    d = dsa.WrapDataObject(sm.Fetch(r))\n"
+        "    out['frames'].append({k: [float(v) for v in d.CellData[k]] for k in ('pressure', 'contact', 'gap', 'displacement', 'profile')})\n"
+        "print('JSON' + json.dumps(out))\n")
+    r = subprocess.run([pvpython, "--force-offscreen-rendering", str(script), str(tmp_path / "pv.xmf")],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    out = json.loads(r.stdout[r.stdout.index("JSON") + 4:].strip().splitlines()[0])
+    assert out["times"] == [float(k) for k in fields["state"]]
+    for k, frame in enumerate(out["frames"]):
+        for name in ("pressure", "contact", "gap", "displacement"):
+            assert np.array_equal(np.array(frame[name]), fields[name][k].ravel()), name
+        assert np.array_equal(np.array(frame["profile"]), fields["profile"].ravel())

@@ -6,14 +6,42 @@ static const char help[] = "adhbem: adhesive normal contact of elastic solids wi
                            "(Pohrt & Popov 2015 mesh-dependent detachment criterion), on PETSc.\n"
                            "Runs the indentation path -adh_path with -adh_steps steps per leg and writes -adh_output.\n\n";
 
-int main(int argc, char **argv)
+/* An error prints its message once, on the first rank that sees it, as one line (with the
+   out-of-memory case said plainly); PETSc's traceback of every frame stays behind -adh_traceback. */
+static PetscBool error_on_every_rank = PETSC_TRUE; /* the error was raised on all ranks together */
+
+static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  PetscMPIInt rank = 0, size = 1, world = 1;
+
+  if (p != PETSC_ERROR_INITIAL) return n;
+  if (comm != PETSC_COMM_SELF) {
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &size);
+  }
+  MPI_Comm_size(PETSC_COMM_WORLD, &world);
+  error_on_every_rank = (PetscBool)(size == world);
+  if (rank) return n;
+  if (n == PETSC_ERR_MEM && !(mess && mess[0])) fprintf(stderr, "adhbem: error: out of memory (use a smaller grid or more nodes; -adh_view shows the memory estimate)\n");
+  else if (n == PETSC_ERR_MEM) fprintf(stderr, "adhbem: error: not enough memory: %s\n", mess);
+  else if (mess && mess[0]) fprintf(stderr, "adhbem: error: %s\n", mess);
+  else {
+    const char *text = NULL;
+    PetscErrorMessage(n, &text, NULL);
+    fprintf(stderr, "adhbem: error: %s (in %s() at %s:%d)\n", text ? text : "unknown error", fun ? fun : "?", file ? file : "?", line);
+  }
+  fflush(stderr);
+  return n;
+}
+
+static PetscErrorCode Run(void)
 {
   AdhSolver       solver;
   const AdhCurve *curve;
   PetscBool       has_help, view = PETSC_FALSE;
   PetscReal       Fmin = 0, dmin = 0;
 
-  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscFunctionBeginUser;
   PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
   PetscCall(AdhSolverSetFromOptions(solver));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_view", &view, NULL));
@@ -21,10 +49,10 @@ int main(int argc, char **argv)
   if (has_help) {
     /* The options above were listed as they were read; the solver's KSP ones come with set-up. */
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_view: <FALSE> Print the solver set-up (None)\n"));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_traceback: <FALSE> On an error, print PETSc's traceback instead of one line (None)\n"));
     PetscCall(AdhSolverSetUp(solver));
     PetscCall(AdhSolverDestroy(&solver));
-    PetscCall(PetscFinalize());
-    return 0;
+    PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
   if (view) PetscCall(AdhSolverView(solver, NULL));
@@ -46,6 +74,21 @@ int main(int argc, char **argv)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults, ffts));
   }
   PetscCall(AdhSolverDestroy(&solver));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+  PetscBool      traceback = PETSC_FALSE;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
+  if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));
+  ierr = Run();
+  if (ierr && traceback) return (int)ierr;
+  /* an error every rank saw ends the run cleanly; one that only some ranks saw must abort the others */
+  if (ierr && !error_on_every_rank) MPI_Abort(PETSC_COMM_WORLD, 1);
   PetscCall(PetscFinalize());
-  return 0;
+  return ierr ? 1 : 0;
 }

@@ -47,3 +47,20 @@ def test_misspelled_keyword_is_a_type_error():
     with pytest.raises(TypeError, match=r"unknown option 'radus' \(did you mean 'radius'\?\)"):
         adhbem.Solver(n=32, radus=1.0)
     adhbem.Solver(n=32, radius=1.0, ksp_rtol=1e-9)  # PETSc's options pass
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_an_error_is_one_line(tmp_path, ranks):
+    """The message once, first and alone (not inside PETSc's traceback of every frame and rank);
+    -adh_traceback brings the traceback back."""
+    serial_only()
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    cmd = ["mpirun", "-n", str(ranks), EXE, "-adh_n", "32", "-adh_steps", "0", "-adh_path", "0.01,0"]
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode != 0
+    lines = [l for l in (r.stderr + r.stdout).splitlines() if "adhbem" in l or "PETSC" in l]
+    assert lines[0] == "adhbem: error: -adh_steps must be >= 1, got 0"
+    assert sum("adhbem: error" in l for l in lines) == 1 and not any("PETSC ERROR" in l for l in lines)
+    r = subprocess.run(cmd + ["-adh_traceback"], capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode != 0 and "PETSC ERROR" in r.stderr + r.stdout and "-adh_steps must be >= 1" in r.stderr + r.stdout

@@ -1,5 +1,6 @@
 /* Paths: the starting state, the legs of -adh_path (indentations, or forces under force
    control), and the recorded curve. */
+#include <signal.h>
 #include "solverimpl.h"
 
 #define COLUMN(name, integer) {#name, offsetof(AdhState, name), integer}
@@ -27,6 +28,13 @@ PetscReal AdhStateValue(const AdhState *st, PetscInt column)
 {
   const char *field = (const char *)st + AdhCurveColumns[column].offset;
   return AdhCurveColumns[column].integer ? (PetscReal) * (const PetscInt *)field : *(const PetscReal *)field;
+}
+
+void AdhStateSetValue(AdhState *st, PetscInt column, PetscReal value)
+{
+  char *field = (char *)st + AdhCurveColumns[column].offset;
+  if (AdhCurveColumns[column].integer) *(PetscInt *)field = (PetscInt)value;
+  else *(PetscReal *)field = value;
 }
 
 PetscErrorCode AdhCurveAppend_Private(AdhCurve *c, const AdhState *st)
@@ -187,20 +195,58 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer)
+/* SIGTERM and SIGINT (what batch systems send before the kill) end the path after the current
+   step: the flag is read after each recorded state, by every rank together. */
+static volatile sig_atomic_t adh_signal = 0;
+
+static void OnSignal(int sig)
+{
+  adh_signal = sig;
+}
+
+/* After the state at (leg, step): the checkpoint when one is due, and the stop on a signal. */
+static PetscErrorCode AfterRecord(AdhSolver s, PetscInt leg, PetscInt step)
+{
+  int sig = (int)adh_signal;
+
+  PetscFunctionBegin;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, s->comm));
+  if (s->checkpoint[0] && (sig || (s->curve.n - 1) % s->checkpoint_every == 0)) PetscCall(AdhCheckpointWrite_Private(s, leg, step));
+  if (sig) {
+    char how[PETSC_MAX_PATH_LEN + 128];
+    if (s->checkpoint[0]) PetscCall(PetscSNPrintf(how, sizeof(how), "go on with the same options and -adh_restart %s", s->checkpoint));
+    else PetscCall(PetscSNPrintf(how, sizeof(how), "with -adh_checkpoint FILE a run can go on from where it stopped"));
+    SETERRQ(s->comm, PETSC_ERR_SIG, "Stopped by signal %d after state %" PetscInt_FMT "; the results so far are in %s (complete = 0); %s", sig, s->curve.n - 1, s->output[0] ? s->output : "(no -adh_output)", how);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The path from its start, or after the state (leg0, step0) of a checkpoint already read. */
+static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer, PetscInt leg0, PetscInt step0)
 {
   PetscLogDouble t0;
 
   PetscFunctionBegin;
-  PetscCall(PetscTime(&t0));
-  PetscCall(AdhSolverStart(s, s->path[0]));
-  PetscCall(Record(s, t0, viewer));
-  for (PetscInt leg = 1; leg < s->npath; leg++) {
+  if (s->restart[0]) {
+    /* go on after the checkpoint's state; a leg that ended in pull-off is over */
+    if (leg0 == 0) leg0 = 1;
+    else if (s->pulled_off) {
+      leg0++;
+      step0 = 0;
+    }
+  } else {
+    PetscCall(PetscTime(&t0));
+    PetscCall(AdhSolverStart(s, s->path[0]));
+    PetscCall(Record(s, t0, viewer));
+    PetscCall(AfterRecord(s, 0, 0));
+  }
+  for (PetscInt leg = leg0; leg < s->npath; leg++) {
     const PetscReal a = s->path[leg - 1], b = s->path[leg];
-    for (PetscInt k = 1; k <= s->steps; k++) {
+    for (PetscInt k = leg == leg0 ? step0 + 1 : 1; k <= s->steps; k++) {
       PetscCall(PetscTime(&t0));
       PetscCall(AdhSolverStep(s, a + (b - a) * k / s->steps));
       PetscCall(Record(s, t0, viewer));
+      PetscCall(AfterRecord(s, leg, k));
       if (s->pulled_off) break; /* the rest of this leg has nothing in contact */
     }
   }
@@ -238,13 +284,22 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 {
   PetscViewer    viewer = NULL;
   PetscErrorCode ierr;
+  PetscInt       leg0 = 1, step0 = 0;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
+  /* a checkpoint that does not fit is refused before a results file is opened */
+  if (s->restart[0]) PetscCall(AdhCheckpointRead_Private(s, &leg0, &step0));
   if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
-  ierr = SolvePathInner(s, viewer);
+  {
+    void (*term)(int) = signal(SIGTERM, OnSignal), (*intr)(int) = signal(SIGINT, OnSignal);
+    adh_signal = 0;
+    ierr       = SolvePathInner(s, viewer, leg0, step0);
+    signal(SIGTERM, term);
+    signal(SIGINT, intr);
+  }
   /* What was computed before an error is still written, marked incomplete. */
   if (viewer) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE}));

@@ -138,6 +138,9 @@ struct _n_AdhSolver {
   PetscInt   fields_stride;     /* -adh_fields_stride: fields of every K-th state */
   PetscInt  *field_states, nfield_states; /* the curve rows whose fields the file holds */
   char       output[PETSC_MAX_PATH_LEN];
+  char       checkpoint[PETSC_MAX_PATH_LEN]; /* -adh_checkpoint: where the state goes (checkpoint.c) */
+  PetscInt   checkpoint_every;              /* -adh_checkpoint_every: after every K-th state */
+  char       restart[PETSC_MAX_PATH_LEN];    /* -adh_restart: the checkpoint to go on from */
   AdhCurve   curve;
 };
 
@@ -158,6 +161,9 @@ PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhCheckpointWrite_Private(AdhSolver, PetscInt leg, PetscInt step);
+PETSC_INTERN PetscErrorCode AdhCheckpointRead_Private(AdhSolver, PetscInt *leg, PetscInt *step);
+PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);

@@ -1,0 +1,269 @@
+/* Checkpoint and restart of a path (-adh_checkpoint FILE, -adh_checkpoint_every K, -adh_restart
+   FILE): the whole state a step needs, through PETSc's HDF5 viewer.
+
+   A checkpoint holds the contact set and the pressure (and, under force control, the set's unit
+   response and the indentation of its equations), the position on the path (leg and step of
+   the last recorded state), the curve so far, and the options that shape the problem, which a
+   restart must repeat. It is written to FILE.part and renamed over FILE, so a crash while
+   writing leaves the previous checkpoint whole. A restart continues the path after the recorded
+   state; with deterministic FFT plans (-adh_fftw_planner estimate) on the same number of ranks
+   the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
+#include "solverimpl.h"
+
+#define ADH_CHECKPOINT_VERSION 1
+
+typedef struct {
+  const char *option; /* what a restart must repeat, named as the user gives it */
+  PetscDataType type;
+  const void   *value;
+} Shape;
+
+/* The options that shape the problem, with this run's values. */
+static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
+{
+  PetscInt n = 0;
+  *Nx = s->grid->Nx;
+  *Ny = s->grid->Ny;
+  *Lx = s->grid->Lx;
+  *Ly = s->grid->Ly;
+  shape[n++] = (Shape){"-adh_n (Nx)", PETSC_INT, Nx};
+  shape[n++] = (Shape){"-adh_n (Ny)", PETSC_INT, Ny};
+  shape[n++] = (Shape){"-adh_size (Lx)", PETSC_REAL, Lx};
+  shape[n++] = (Shape){"-adh_size (Ly)", PETSC_REAL, Ly};
+  shape[n++] = (Shape){"-adh_boundary", PETSC_STRING, AdhBoundaries[s->boundary]};
+  shape[n++] = (Shape){"-adh_indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]};
+  shape[n++] = (Shape){"-adh_E_star", PETSC_REAL, &s->Estar};
+  shape[n++] = (Shape){"-adh_gamma", PETSC_REAL, &s->gamma};
+  shape[n++] = (Shape){"-adh_control", PETSC_STRING, s->control_type};
+  shape[n++] = (Shape){"-adh_criterion", PETSC_STRING, s->criterion_type};
+  shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
+  shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
+  return n;
+}
+
+/* Every column of the curve as a 1-D dataset of the current group. */
+static PetscErrorCode WriteCurve(AdhSolver s, PetscViewer v)
+{
+  const AdhCurve *c = &s->curve;
+  PetscMPIInt     rank;
+  Vec             col;
+  PetscScalar    *a;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : c->n, c->n, &col));
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    PetscCall(PetscObjectSetName((PetscObject)col, AdhCurveColumns[j].name));
+    PetscCall(VecGetArrayWrite(col, &a));
+    if (!rank)
+      for (PetscInt k = 0; k < c->n; k++) a[k] = AdhStateValue(&c->state[k], j);
+    PetscCall(VecRestoreArrayWrite(col, &a));
+    PetscCall(VecView(col, v));
+  }
+  PetscCall(VecDestroy(&col));
+  PetscFunctionReturn(0);
+}
+
+/* The curve of n states from the current group, on every rank. */
+static PetscErrorCode ReadCurve(AdhSolver s, PetscViewer v, PetscInt n)
+{
+  PetscMPIInt        rank;
+  Vec                col, all;
+  VecScatter         toall;
+  const PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(AdhCurveDestroy_Private(&s->curve));
+  for (PetscInt k = 0; k < n; k++) {
+    AdhState st;
+    PetscCall(PetscMemzero(&st, sizeof(st)));
+    PetscCall(AdhCurveAppend_Private(&s->curve, &st));
+  }
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : n, n, &col));
+  PetscCall(VecScatterCreateToAll(col, &toall, &all));
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    PetscCall(PetscObjectSetName((PetscObject)col, AdhCurveColumns[j].name));
+    PetscCall(VecLoad(col, v));
+    PetscCall(VecScatterBegin(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(all, &a));
+    for (PetscInt k = 0; k < n; k++) AdhStateSetValue(&s->curve.state[k], j, PetscRealPart(a[k]));
+    PetscCall(VecRestoreArrayRead(all, &a));
+  }
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&col));
+  PetscFunctionReturn(0);
+}
+
+/* The contact set as a grid Vec (1 in the set), for the viewer. */
+static PetscErrorCode MaskVec(AdhSolver s, Vec *mask)
+{
+  PetscScalar *m;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(s->p, mask));
+  PetscCall(PetscObjectSetName((PetscObject)*mask, "contact"));
+  PetscCall(VecGetArrayWrite(*mask, &m));
+  for (PetscInt k = 0; k < s->nlocal; k++) m[k] = s->in_set[k] ? 1.0 : 0.0;
+  PetscCall(VecRestoreArrayWrite(*mask, &m));
+  PetscFunctionReturn(0);
+}
+
+/* The state after the recorded state at (leg, step) of the path, into s->checkpoint. */
+PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt step)
+{
+  char        part[PETSC_MAX_PATH_LEN + 8];
+  PetscViewer v;
+  Vec         mask, path;
+  Shape       shape[16];
+  PetscInt    n, Nx, Ny, version = ADH_CHECKPOINT_VERSION, npath = s->npath, pulled = s->pulled_off;
+  PetscReal   Lx, Ly;
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(part, sizeof(part), "%s.part", s->checkpoint));
+  PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, &v));
+  n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
+  for (PetscInt k = 0; k < n; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", shape[k].option, shape[k].type, shape[k].value));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "version", PETSC_INT, &version));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "leg", PETSC_INT, &leg));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &step));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "states", PETSC_INT, &s->curve.n));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "npath", PETSC_INT, &npath));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "d", PETSC_REAL, &s->d));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "e", PETSC_REAL, &s->e));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulled_off", PETSC_INT, &pulled));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
+  PetscCall(VecView(s->p, v));
+  PetscCall(MaskVec(s, &mask));
+  PetscCall(VecView(mask, v));
+  PetscCall(VecDestroy(&mask));
+  if (s->xunit) {
+    PetscCall(PetscObjectSetName((PetscObject)s->xunit, "xunit"));
+    PetscCall(VecView(s->xunit, v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : s->npath, s->npath, &path));
+  PetscCall(PetscObjectSetName((PetscObject)path, "path"));
+  if (!rank) {
+    PetscScalar *a;
+    PetscCall(VecGetArrayWrite(path, &a));
+    for (PetscInt k = 0; k < s->npath; k++) a[k] = s->path[k];
+    PetscCall(VecRestoreArrayWrite(path, &a));
+  }
+  PetscCall(VecView(path, v));
+  PetscCall(VecDestroy(&path));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
+  PetscCall(WriteCurve(s, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+  if (!rank) ok = rename(part, s->checkpoint) == 0;
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_checkpoint: could not move %s to %s", part, s->checkpoint);
+  PetscFunctionReturn(0);
+}
+
+/* Refuse a checkpoint whose problem differs from this run's, naming the option. */
+static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
+{
+  Shape     shape[16];
+  PetscInt  n, Nx, Ny, version = 0;
+  PetscReal Lx, Ly;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &version));
+  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d", s->restart, ADH_CHECKPOINT_VERSION);
+  n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscBool same = PETSC_FALSE;
+    if (shape[k].type == PETSC_STRING) {
+      char *saved = NULL;
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_STRING, NULL, &saved));
+      PetscCall(PetscStrcmp(saved, (const char *)shape[k].value, &same));
+      PetscCheck(same, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %s, this run %s", s->restart, shape[k].option, saved, (const char *)shape[k].value);
+      PetscCall(PetscFree(saved));
+    } else if (shape[k].type == PETSC_INT) {
+      PetscInt saved = 0;
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_INT, NULL, &saved));
+      PetscCheck(saved == *(const PetscInt *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %" PetscInt_FMT ", this run %" PetscInt_FMT, s->restart, shape[k].option, saved, *(const PetscInt *)shape[k].value);
+    } else {
+      PetscReal saved = 0;
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_REAL, NULL, &saved));
+      PetscCheck(saved == *(const PetscReal *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %.17g, this run %.17g", s->restart, shape[k].option, (double)saved, (double)*(const PetscReal *)shape[k].value);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The state of s->restart: the contact set, pressure and position; the curve so far. */
+PetscErrorCode AdhCheckpointRead_Private(AdhSolver s, PetscInt *leg, PetscInt *step)
+{
+  PetscViewer        v;
+  Vec                mask, path, all;
+  VecScatter         toall;
+  const PetscScalar *m, *a;
+  PetscInt           states = 0, npath = 0, pulled = 0;
+  PetscMPIInt        rank;
+  PetscBool          exists;
+  PetscErrorCode     ierr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscTestFile(s->restart, 'r', &exists));
+  PetscCheck(exists, s->comm, PETSC_ERR_FILE_OPEN, "-adh_restart: cannot read %s", s->restart);
+  /* a truncated or foreign file fails in HDF5: say which option and file */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = PetscViewerHDF5Open(s->comm, s->restart, FILE_MODE_READ, &v);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, s->comm, PETSC_ERR_FILE_READ, "-adh_restart %s: not a readable HDF5 file (truncated or corrupted?)", s->restart);
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "version", &exists));
+  if (!exists) PetscCall(PetscViewerDestroy(&v));
+  PetscCheck(exists, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint (written by -adh_checkpoint)", s->restart);
+  PetscCall(CheckShape(s, v));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "npath", PETSC_INT, NULL, &npath));
+  PetscCheck(npath == s->npath, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path has %" PetscInt_FMT " points, this run's %" PetscInt_FMT, s->restart, npath, s->npath);
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : npath, npath, &path));
+  PetscCall(PetscObjectSetName((PetscObject)path, "path"));
+  PetscCall(VecLoad(path, v));
+  PetscCall(VecScatterCreateToAll(path, &toall, &all));
+  PetscCall(VecScatterBegin(toall, path, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toall, path, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  for (PetscInt k = 0; k < npath; k++) PetscCheck(PetscRealPart(a[k]) == s->path[k], s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path point %" PetscInt_FMT " is %.17g, this run's %.17g", s->restart, k, (double)PetscRealPart(a[k]), (double)s->path[k]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&path));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "leg", PETSC_INT, NULL, leg));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "step", PETSC_INT, NULL, step));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "states", PETSC_INT, NULL, &states));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "d", PETSC_REAL, NULL, &s->d));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "e", PETSC_REAL, NULL, &s->e));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "pulled_off", PETSC_INT, NULL, &pulled));
+  s->pulled_off = (PetscBool)(pulled != 0);
+  PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
+  PetscCall(VecLoad(s->p, v));
+  PetscCall(VecDuplicate(s->p, &mask));
+  PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
+  PetscCall(VecLoad(mask, v));
+  PetscCall(VecGetArrayRead(mask, &m));
+  for (PetscInt k = 0; k < s->nlocal; k++) s->in_set[k] = PetscRealPart(m[k]) > 0.5;
+  PetscCall(VecRestoreArrayRead(mask, &m));
+  PetscCall(VecDestroy(&mask));
+  if (s->xunit) {
+    PetscCall(PetscObjectSetName((PetscObject)s->xunit, "xunit"));
+    PetscCall(VecLoad(s->xunit, v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
+  PetscCall(ReadCurve(s, v, states));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+  s->adhesive = PETSC_TRUE;
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  PetscFunctionReturn(0);
+}

@@ -41,6 +41,21 @@ static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny,
   return n;
 }
 
+/* Fingerprints of the fields that shape the problem without an option of their own (a topography
+   file or array, a rough surface's parameters, a work-of-adhesion field): their 1- and 2-norms. */
+static PetscErrorCode Fingerprints(AdhSolver s, PetscReal f[4])
+{
+  PetscFunctionBegin;
+  PetscCall(VecNorm(s->h, NORM_1, &f[0]));
+  PetscCall(VecNorm(s->h, NORM_2, &f[1]));
+  f[2] = f[3] = 0.0;
+  if (s->gamma_field) {
+    PetscCall(VecNorm(s->gamma_field, NORM_1, &f[2]));
+    PetscCall(VecNorm(s->gamma_field, NORM_2, &f[3]));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Every column of the curve as a 1-D dataset of the current group. */
 static PetscErrorCode WriteCurve(AdhSolver s, PetscViewer v)
 {
@@ -129,6 +144,14 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", shape[k].option, shape[k].type, shape[k].value));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "version", PETSC_INT, &version));
+  {
+    PetscReal f[4];
+    PetscCall(Fingerprints(s, f));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "profile_norm1", PETSC_REAL, &f[0]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "profile_norm2", PETSC_REAL, &f[1]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_norm1", PETSC_REAL, &f[2]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_norm2", PETSC_REAL, &f[3]));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "leg", PETSC_INT, &leg));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &step));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "states", PETSC_INT, &s->curve.n));
@@ -194,6 +217,16 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
       PetscReal saved = 0;
       PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_REAL, NULL, &saved));
       PetscCheck(saved == *(const PetscReal *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %.17g, this run %.17g", s->restart, shape[k].option, (double)saved, (double)*(const PetscReal *)shape[k].value);
+    }
+  }
+  {
+    /* norms summed in another order on another number of ranks: equal to rounding */
+    const char *names[4] = {"profile_norm1", "profile_norm2", "gamma_field_norm1", "gamma_field_norm2"};
+    PetscReal   f[4], saved;
+    PetscCall(Fingerprints(s, f));
+    for (PetscInt k = 0; k < 4; k++) {
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", names[k], PETSC_REAL, NULL, &saved));
+      PetscCheck(PetscAbsReal(saved - f[k]) <= 1e-12 * PetscMax(PetscAbsReal(saved), PetscAbsReal(f[k])), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's %s differs from this run's (%s: another topography, rough surface (-adh_seed, -adh_hurst, ...) or indenter parameter)", s->restart, k < 2 ? "indenter profile" : "work-of-adhesion field", k < 2 ? "-adh_indenter" : "-adh_gamma_field");
     }
   }
   PetscFunctionReturn(0);

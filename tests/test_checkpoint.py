@@ -109,7 +109,7 @@ def test_sigkill_then_restart(tmp_path, reference):
 @pytest.fixture(scope="module")
 def checkpoint(tmp_path_factory):
     ck = tmp_path_factory.mktemp("ck") / "ck.h5"
-    r = subprocess.run([EXE, *OPTS, "-adh_path", "0,1.2", "-adh_steps", "3", "-adh_checkpoint", str(ck)],
+    r = subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_checkpoint", str(ck)],
                        capture_output=True, text=True, env=ENV)
     assert r.returncode == 0, r.stderr[-2000:]
     return ck
@@ -120,12 +120,14 @@ def checkpoint(tmp_path_factory):
     (["-adh_boundary", "free"], "-adh_boundary"),
     (["-adh_gamma", "0.005"], "-adh_gamma"),
     (["-adh_control", "force"], "-adh_control"),
-    (["-adh_path", "0,1.1"], "-adh_path"),
+    (["-adh_path", "0,0.8"], "-adh_path"),
+    (["-adh_seed", "8"], "-adh_indenter"),
+    (["-adh_rms_slope", "0.11"], "-adh_indenter"),
 ])
 def test_restart_with_other_options_is_refused(tmp_path, checkpoint, args, says):
     serial_only()
     out = tmp_path / "x.h5"
-    r = subprocess.run([EXE, *OPTS, "-adh_path", "0,1.2", "-adh_steps", "3", *args, "-adh_restart", str(checkpoint),
+    r = subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", *args, "-adh_restart", str(checkpoint),
                         "-adh_output", str(out)], capture_output=True, text=True, env=ENV)
     assert r.returncode != 0 and says in r.stderr and "-adh_restart" in r.stderr
     assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())
@@ -137,10 +139,10 @@ def test_damaged_checkpoints_are_refused(tmp_path, checkpoint):
     cut = tmp_path / "cut.h5"
     cut.write_bytes(data[: len(data) // 2])
     results = tmp_path / "results.h5"
-    assert subprocess.run([EXE, *OPTS, "-adh_path", "0,1.2", "-adh_steps", "1", "-adh_output", str(results)],
+    assert subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "1", "-adh_output", str(results)],
                           capture_output=True, env=ENV).returncode == 0
     for bad, says in ((cut, "not a readable HDF5 file"), (results, "not an adhbem checkpoint"),
                       (tmp_path / "none.h5", "cannot read")):
-        r = subprocess.run([EXE, *OPTS, "-adh_path", "0,1.2", "-adh_steps", "3", "-adh_restart", str(bad)],
+        r = subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_restart", str(bad)],
                            capture_output=True, text=True, env=ENV)
         assert r.returncode != 0 and says in r.stderr and "-adh_restart" in r.stderr, r.stderr

@@ -24,11 +24,12 @@ static PetscErrorCode SiblingName(const char file[], const char ext[], char name
   PetscFunctionReturn(0);
 }
 
-/* Rank 0 tries to create the file; everyone learns the answer, so a bad path fails before any
-   work with a message that names it. */
-PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char file[])
+/* Rank 0 makes the file's directory when it is missing (results/ in a fresh clone) and tries to
+   create the file; everyone learns the answer, so a bad path fails before any work with a
+   message that names the option and the file. */
+PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], const char file[])
 {
-  char        part[PETSC_MAX_PATH_LEN + 8], reason[256] = "";
+  char        part[PETSC_MAX_PATH_LEN + 8], dir[PETSC_MAX_PATH_LEN], reason[256] = "";
   PetscMPIInt rank;
   int         ok = 1;
 
@@ -36,7 +37,17 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char file[])
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
   if (!rank) {
-    FILE *fp = fopen(part, "w");
+    FILE      *fp;
+    char      *slash;
+    PetscBool  exists = PETSC_TRUE;
+    PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
+    slash = strrchr(dir, '/');
+    if (slash && slash != dir) {
+      *slash = 0;
+      PetscCall(PetscTestDirectory(dir, 'w', &exists));
+      if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
+    }
+    fp = fopen(part, "w");
     if (!fp) {
       ok = 0;
       PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
@@ -47,7 +58,7 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char file[])
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCallMPI(MPI_Bcast(reason, sizeof(reason), MPI_CHAR, 0, s->comm));
-  PetscCheck(ok, s->comm, PETSC_ERR_FILE_OPEN, "-adh_output: cannot write %s: %s", file, reason);
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_OPEN, "%s: cannot write %s: %s", option, file, reason);
   PetscFunctionReturn(0);
 }
 
@@ -56,7 +67,7 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   char part[PETSC_MAX_PATH_LEN + 8];
 
   PetscFunctionBegin;
-  PetscCall(AdhOutputCheckWritable_Private(s, file));
+  PetscCall(AdhOutputCheckWritable_Private(s, "-adh_output", file));
   PetscCall(PartName(file, part, sizeof(part)));
   PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, viewer));
   PetscFunctionReturn(0);

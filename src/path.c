@@ -292,6 +292,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   PetscCall(AdhCurveDestroy_Private(&s->curve));
   /* a checkpoint that does not fit is refused before a results file is opened */
   if (s->restart[0]) PetscCall(AdhCheckpointRead_Private(s, &leg0, &step0));
+  if (s->checkpoint[0]) PetscCall(AdhOutputCheckWritable_Private(s, "-adh_checkpoint", s->checkpoint));
   if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
   {
     void (*term)(int) = signal(SIGTERM, OnSignal), (*intr)(int) = signal(SIGINT, OnSignal);

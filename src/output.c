@@ -73,6 +73,66 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscFunctionReturn(0);
 }
 
+/* An HDF5 call that fails (a negative return) becomes a PETSc error naming it. */
+#define ADH_H5(call) \
+  do { \
+    PetscCheck((call) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5: %s failed", #call); \
+  } while (0)
+
+/* The contact mask of the current state as frame `frame` of the uint8 dataset contact
+   (frames, Ny, Nx) of the viewer's current group: a byte per point where VecView would write 8.
+   Each rank writes its rows; the dataset grows by one frame per call. */
+static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt frame)
+{
+  const AdhGrid  g = s->grid;
+  hid_t          file_id, group, dset, filespace, memspace;
+  hsize_t        dims[3], maxdims[3], chunk[3], offset[3], count[3];
+  PetscInt       ys, ym;
+  unsigned char *mask;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  dims[0] = (hsize_t)frame + 1;
+  dims[1] = maxdims[1] = (hsize_t)g->Ny;
+  dims[2] = maxdims[2] = (hsize_t)g->Nx;
+  maxdims[0] = H5S_UNLIMITED;
+  /* one frame per chunk, at most 1 GB (HDF5 chunks must stay below 4 GB) */
+  chunk[0] = 1;
+  chunk[1] = (hsize_t)PetscMax(1, PetscMin(g->Ny, (PetscInt)(1073741824 / g->Nx)));
+  chunk[2] = (hsize_t)g->Nx;
+  PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file_id, &group));
+  if (!H5Lexists(group, "contact", H5P_DEFAULT)) {
+    hid_t plist;
+    ADH_H5(filespace = H5Screate_simple(3, dims, maxdims));
+    ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
+    ADH_H5(H5Pset_chunk(plist, 3, chunk));
+    ADH_H5(dset = H5Dcreate2(group, "contact", H5T_NATIVE_UCHAR, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
+    ADH_H5(H5Pclose(plist));
+    ADH_H5(H5Sclose(filespace));
+  } else {
+    ADH_H5(dset = H5Dopen2(group, "contact", H5P_DEFAULT));
+    ADH_H5(H5Dset_extent(dset, dims));
+  }
+  offset[0] = (hsize_t)frame;
+  offset[1] = (hsize_t)ys;
+  offset[2] = 0;
+  count[0]  = 1;
+  count[1]  = (hsize_t)ym;
+  count[2]  = (hsize_t)g->Nx;
+  PetscCall(PetscMalloc1(s->nlocal + 1, &mask));
+  for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : 0;
+  ADH_H5(filespace = H5Dget_space(dset));
+  ADH_H5(memspace = H5Screate_simple(3, count, NULL));
+  ADH_H5(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, offset, NULL, count, NULL));
+  ADH_H5(H5Dwrite(dset, H5T_NATIVE_UCHAR, memspace, filespace, H5P_DEFAULT, mask));
+  PetscCall(PetscFree(mask));
+  ADH_H5(H5Sclose(memspace));
+  ADH_H5(H5Sclose(filespace));
+  ADH_H5(H5Dclose(dset));
+  ADH_H5(H5Gclose(group));
+  PetscFunctionReturn(0);
+}
+
 /* The fields chosen by -adh_fields of the current state, curve row `state`, as the next frame of
    /fields (HDF5 timestepping); the first frame also holds the profile h and the critical stress.
    /fields/state (written at close) maps frames to curve rows. */
@@ -102,18 +162,8 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
     PetscCall(VecView(u, viewer));
   }
   if (s->fields & ADH_FIELD_GAP) PetscCall(VecView(s->g, viewer));
-  if (s->fields & ADH_FIELD_CONTACT) {
-    Vec          mask;
-    PetscScalar *ma;
-    PetscCall(VecDuplicate(s->p, &mask));
-    PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
-    PetscCall(VecGetArrayWrite(mask, &ma));
-    for (PetscInt k = 0; k < s->nlocal; k++) ma[k] = s->in_set[k] ? 1.0 : 0.0;
-    PetscCall(VecRestoreArrayWrite(mask, &ma));
-    PetscCall(VecView(mask, viewer));
-    PetscCall(VecDestroy(&mask));
-  }
   PetscCall(PetscViewerHDF5PopTimestepping(viewer));
+  if (s->fields & ADH_FIELD_CONTACT) PetscCall(WriteContactMask(s, viewer, frame));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
 }
@@ -285,7 +335,7 @@ static PetscErrorCode WriteXDMF(AdhSolver s, const char file[])
           fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", names[f]);
           fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\">\n", Ny, Nx);
           fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", t, Ny, Nx);
-          fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, h5, names[f]);
+          fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, f == 3 ? "UChar" : "Float", f == 3 ? 1 : 8, h5, names[f]);
           fprintf(fp, "     </DataItem>\n    </Attribute>\n");
         }
         for (PetscInt f = 0; f < 3; f++) {

@@ -147,3 +147,20 @@ def test_paraview_reads_the_xdmf(tmp_path):
         for name in ("pressure", "contact", "gap", "displacement"):
             assert np.array_equal(np.array(frame[name]), fields[name][k].ravel()), name
         assert np.array_equal(np.array(frame["profile"]), fields["profile"].ravel())
+
+
+def test_contact_mask_is_a_byte_per_point_on_any_number_of_ranks(tmp_path):
+    """The mask is uint8 (1 byte per point, not 8), and 3 ranks write the same frames as 1."""
+    serial_only()
+    one, _ = run(tmp_path, "one", "-adh_fields", "contact")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    out = tmp_path / "three.h5"
+    r = subprocess.run(["mpirun", "-n", "3", *RUN, "-adh_fields", "contact", "-adh_output", str(out)],
+                       capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    import h5py
+    with h5py.File(out, "r") as f:
+        three = f["fields/contact"][()]
+    assert one["contact"].dtype == np.uint8 and three.dtype == np.uint8
+    assert np.array_equal(one["contact"], three) and one["contact"].sum() > 0

@@ -9,10 +9,12 @@ import os
 import subprocess
 import sys
 
-import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# adhbem (petsc4py) is imported only after mpirun has run: an MPI process that has started
+# MPI cannot launch mpirun.
+sys.path.insert(0, os.path.join(ROOT, "python"))
 
 
 def jkr_theory(gamma, R, E):
@@ -46,10 +48,18 @@ def run_adhbem(options, output, np_ranks, extra=()):
     for k, v in options.items():
         args += [f"-adh_{k}", ",".join(repr(x) for x in v) if isinstance(v, list) else str(v)]
     cmd = ["mpirun", "--oversubscribe", "-n", str(np_ranks), os.path.join(ROOT, "build", "adhbem"),
-           *args, "-adh_output", output, *extra]
+           *args, "-adh_output", output, "-adh_fields", "pressure,contact", *extra]
     subprocess.run(cmd, check=True)
-    with h5py.File(output, "r") as f:
-        return {k: f["curve"][k][()] for k in f["curve"]}, dict(f.attrs)
+    import adhbem
+    with adhbem.load(output) as r:
+        return r.curve, r.params
+
+
+def draw(output):
+    """The curves against the analytic solution, and the pressure maps (adhbem.plot)."""
+    from adhbem.plot import plot
+    png = plot(output)
+    print(f"wrote {png}")
 
 
 def table(rows):
@@ -76,31 +86,7 @@ def jkr(args):
            ("contact radius at largest tension", a[k], a_c),
            ("jump-off indentation (last contact)", d[last], -2.080 * d_c),
            ("contact radius at jump-off", a[last], 3 ** (-2 / 3) * a_c)])
-    plot_jkr(d / d_c, F / F_adh, a / a_c, os.path.join(args.results, "jkr.png"), args)
-
-
-def plot_jkr(dn, Fn, an, png, args):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    at = np.linspace(3 ** (-2 / 3), 1.6, 400)
-    fig, ax = plt.subplots(1, 2, figsize=(10, 4.2))
-    ax[0].plot(3 * at**2 - 4 * np.sqrt(at), at**3 - 2 * at**1.5, "k-", label="JKR")
-    ax[0].plot(dn, Fn, "x", color="C3", label=f"adhbem {args.n}$^2$")
-    ax[0].set_xlabel(r"$\tilde d = d/|d_c|$")
-    ax[0].set_ylabel(r"$\tilde F = F/F_{adh}$")
-    ax[1].plot(at, at**3 - 2 * at**1.5, "k-", label="JKR")
-    ax[1].plot(an, Fn, "x", color="C3", label=f"adhbem {args.n}$^2$")
-    ax[1].set_xlabel(r"$\tilde a = a/a_c$")
-    ax[1].set_ylabel(r"$\tilde F$")
-    for x in ax:
-        x.axhline(0, color="0.8", lw=0.8)
-        x.legend()
-        x.grid(alpha=0.3)
-    fig.suptitle("Displacement-controlled pull-off of a sphere (Pohrt & Popov criterion)")
-    fig.tight_layout()
-    fig.savefig(png, dpi=120)
-    print(f"wrote {png}")
+    draw(out)
 
 
 def punch(args):
@@ -121,22 +107,7 @@ def punch(args):
     table([("stiffness F/d before detachment", stiff, 2 * a * E),
            ("pull-off force", -F[k], F_adh),
            ("pull-off indentation", d[last], d_crit)])
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(5.5, 4.2))
-    dd = np.linspace(d_crit, d.max(), 50)
-    ax.plot(dd / abs(d_crit), 2 * a * E * dd / F_adh, "k-", label=r"$F = 2aE^*d$")
-    ax.plot([-1], [-1], "ko", mfc="none", ms=10, label="Kendall pull-off")
-    ax.plot(d / abs(d_crit), F / F_adh, "x", color="C3", label="adhbem")
-    ax.set_xlabel(r"$d/|d_{crit}|$")
-    ax.set_ylabel(r"$F/F_{adh}$")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    png = os.path.join(args.results, "punch.png")
-    fig.savefig(png, dpi=120)
-    print(f"wrote {png}")
+    draw(out)
 
 
 def main():

@@ -8,8 +8,8 @@ results/rough.h5 and .csv (with adhesion), results/rough_nonadhesive.h5 and .csv
 results/rough.png, and prints a short table.
 
 Run as `./run rough [--n N] [--np P] [--gamma G] [--steps K]`. The solve runs under mpirun on P
-ranks through the Python layer (the same solver as build/adhbem), whose monitor keeps the
-contact maps at the largest load and the largest tension.
+ranks through the Python layer (the same solver as build/adhbem); the adhesive run writes its
+contact masks (-adh_fields contact, a byte per point), and the plot is adhbem.plot's.
 """
 import argparse
 import math
@@ -28,7 +28,7 @@ def surface_options(a):
 
 
 def worker(a):
-    """Runs under mpirun: both solves, curves through the solver's HDF5 output, maps to .npz."""
+    """Runs under mpirun: both solves, through the solver's HDF5 output."""
     sys.path.insert(0, os.path.join(ROOT, "python"))
     import adhbem
     from adhbem import PETSc
@@ -38,32 +38,16 @@ def worker(a):
                                     rolloff_wavelength=opts["rolloff_wavelength"], seed=1)
     Z = adhbem.gather(z, z)
     d1 = float(np.quantile(Z.max() - Z, a.depth))
-    maps = {}
     for name, gamma in (("rough", a.gamma), ("rough_nonadhesive", 0.0)):
         # the same indentations on approach and retraction down to d = 0, then on to pull-off
         s = adhbem.Solver(**opts, gamma=gamma, start="adhesive", attach="reach",
                           path=[0.0, d1, 0.0, -d1], steps=a.steps, monitor=True,
+                          fields="contact" if gamma else "none",
                           output=os.path.join(a.results, name + ".h5"))
-        best = {"load": (-np.inf, None), "tension": (np.inf, None)}
-
-        def keep(step, state, s=s, best=best, deepest=[-np.inf]):
-            # the contact maps of the largest load (the deepest indentation) and of the largest
-            # tension so far
-            F = state["force"]
-            for key, better in (("load", state["d"] > deepest[0]), ("tension", F < best["tension"][0] and F < 0)):
-                if better:
-                    best[key] = (F, adhbem.gather(s.contact_mask(), s.compliance) > 0)
-            deepest[0] = max(deepest[0], state["d"])
-        s.monitor(keep)
         if rank == 0:
             print(f"\n{name}: dgamma = {gamma}, N = {a.n}, path 0 -> {d1:.4g} -> 0 -> {-d1:.4g}, {a.steps} steps a leg", flush=True)
         s.solve_path()
-        if name == "rough":
-            maps = {f"{k}_map": v[1] for k, v in best.items() if v[1] is not None}
-            maps.update({f"{k}_force": v[0] for k, v in best.items() if v[1] is not None})
         del s
-    if rank == 0:
-        np.savez_compressed(os.path.join(a.results, "rough_maps.npz"), **maps)
 
 
 def loop_energy(d, F):
@@ -73,12 +57,13 @@ def loop_energy(d, F):
 
 
 def report(a):
-    import h5py
+    sys.path.insert(0, os.path.join(ROOT, "python"))
+    import adhbem
     curves = {}
     for name in ("rough", "rough_nonadhesive"):
-        with h5py.File(os.path.join(a.results, name + ".h5"), "r") as f:
-            curves[name] = {k: f["curve"][k][()] for k in f["curve"]}
-            attrs = dict(f.attrs)
+        with adhbem.load(os.path.join(a.results, name + ".h5")) as r:
+            curves[name] = r.curve
+            attrs = r.params
     c, c0 = curves["rough"], curves["rough_nonadhesive"]
     k, k0 = int(np.argmax(c["d"])), int(np.argmax(c0["d"]))
     N2 = a.n * a.n
@@ -99,54 +84,12 @@ def report(a):
     plot(a, c, c0)
 
 
-def in_contact(c):
-    """The states up to the first one without contact after the deepest: a retraction that has
-    come off has nothing more to show."""
-    k = int(np.argmax(c["d"]))
-    off = np.nonzero(c["contact_points"][k:] == 0)[0]
-    end = k + int(off[0]) + 1 if len(off) else len(c["d"])
-    return {key: v[:end] for key, v in c.items()}
-
-
 def plot(a, c, c0):
-    c, c0 = in_contact(c), in_contact(c0)
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    maps = np.load(os.path.join(a.results, "rough_maps.npz"))
-    N2 = a.n * a.n
-    fig, ax = plt.subplots(2, 2, figsize=(11, 9.5))
-    ax[0, 0].plot(c["d"], c["force"], ".-", label=f"dgamma = {a.gamma}")
-    ax[0, 0].plot(c0["d"], c0["force"], ".-", label="no adhesion")
-    ax[0, 0].axhline(0, color="gray", lw=0.5)
-    ax[0, 0].set(xlabel="indentation d", ylabel="force F (mean pressure x cell area)",
-                 title="approach and retraction: the hysteresis loop")
-    ax[0, 0].legend()
-    ax[0, 1].plot(c["force"], c["area"] / N2, ".-", label=f"dgamma = {a.gamma}")
-    ax[0, 1].plot(c0["force"], c0["area"] / N2, ".-", label="no adhesion")
-    ax[0, 1].set(xlabel="force F", ylabel="contact area fraction A / A0", title="contact area against force")
-    ax[0, 1].legend()
-    for j, key, title in ((0, "load", "largest load"), (1, "tension", "largest tension")):
-        axm = ax[1, j]
-        if f"{key}_map" in maps:
-            m = maps[f"{key}_map"]
-            # a small contact is shown in its own window (the cell is periodic: no wrap here)
-            j, i = np.nonzero(m)
-            pad = 16
-            j0, j1, i0, i1 = 0, m.shape[0], 0, m.shape[1]
-            if len(j):
-                j0, j1 = max(j.min() - pad, 0), min(j.max() + pad + 1, m.shape[0])
-                i0, i1 = max(i.min() - pad, 0), min(i.max() + pad + 1, m.shape[1])
-            axm.imshow(m[j0:j1, i0:i1], origin="lower", cmap="Greys", interpolation="nearest",
-                       extent=(i0 - 0.5, i1 - 0.5, j0 - 0.5, j1 - 0.5))
-            axm.set_title(f"contact map at the {title}, F = {float(maps[key + '_force']):.4g}")
-        else:
-            axm.set_title(f"no state carries a tension")
-        axm.set(xlabel="i", ylabel="j")
-    fig.tight_layout()
-    out = os.path.join(a.results, "rough.png")
-    fig.savefig(out, dpi=110)
-    print(f"wrote {out}, {os.path.join(a.results, 'rough.h5')} (.csv), {os.path.join(a.results, 'rough_nonadhesive.h5')} (.csv)")
+    """adhbem.plot: the loop and area against force beside the non-adhesive run, and the contact
+    maps at the largest load and the largest tension."""
+    from adhbem.plot import plot as draw
+    out = draw(os.path.join(a.results, "rough.h5"), compare=[os.path.join(a.results, "rough_nonadhesive.h5")])
+    print(f"wrote {out}, {os.path.join(a.results, 'rough.h5')} (.csv, .xmf), {os.path.join(a.results, 'rough_nonadhesive.h5')} (.csv)")
 
 
 def main():

@@ -1,9 +1,12 @@
 """Plots of a results file: python3 -m adhbem.plot FILE.h5 [--out FILE.png] [--states K,L,...]
+[--compare OTHER.h5 ...]
 
 Draws the force against the indentation (with the analytic curve where the indenter has one on a
 free boundary: Hertz or JKR for the sphere, Kendall for the flat punch, the JKR-type cone), the
 contact area against the force, and, when the file has fields (-adh_fields), contact maps of the
-chosen states (default: the largest load and the largest tension). Writes FILE.png by default.
+chosen states (default: the deepest indentation and the largest tension). Curves of other results
+files (--compare, e.g. the same surface without adhesion) are drawn beside. Writes FILE.png by
+default.
 """
 import argparse
 import math
@@ -40,12 +43,18 @@ def analytic(params, d, area):
 
 
 def default_states(curve):
-    """The largest load and the largest tension."""
+    """The largest load (the deepest indentation) and, when a state carries tension, the largest
+    tension."""
     F = curve["force"]
-    return sorted({int(np.argmax(F)), int(np.argmin(F))})
+    return sorted({int(np.argmax(curve["d"]))} | ({int(np.argmin(F))} if F.min() < 0 else set()))
 
 
-def plot(path, out=None, states=None):
+def run_label(params):
+    g = params.get("gamma", 0.0)
+    return f"dgamma = {g:g}" if g else "no adhesion"
+
+
+def plot(path, out=None, states=None, compare=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -66,8 +75,12 @@ def plot(path, out=None, states=None):
         fig, ax = plt.subplots(1, ncols, figsize=(5 * ncols, 4.4))
         ref = analytic(p, d, A)
         xlabel = "indentation d" if p.get("control") != "force" else "indentation d (force control)"
-        ax[0].plot(d, F, ".-", ms=3, lw=0.8, label="adhbem")
-        ax[1].plot(F, A, ".-", ms=3, lw=0.8, label="adhbem")
+        ax[0].plot(d, F, ".-", ms=3, lw=0.8, label=f"adhbem, {run_label(p)}")
+        ax[1].plot(F, A, ".-", ms=3, lw=0.8, label=f"adhbem, {run_label(p)}")
+        for other in compare:
+            with load(other) as o:
+                ax[0].plot(o.curve["d"], o.curve["force"], ".-", ms=3, lw=0.8, label=f"adhbem, {run_label(o.params)}")
+                ax[1].plot(o.curve["force"], o.curve["area"], ".-", ms=3, lw=0.8, label=f"adhbem, {run_label(o.params)}")
         if ref:
             label, rd, rF, rA = ref
             ax[0].plot(rd, rF, "k--", lw=1, label=label)
@@ -92,7 +105,7 @@ def plot(path, out=None, states=None):
                 fig.colorbar(im, ax=a, shrink=0.8, label="pressure (contact only)")
             else:
                 a.imshow(mask, origin="lower", extent=extent, cmap="Greys", interpolation="nearest")
-            a.set_title(f"state {row}: d = {d[row]:.4g}, F = {F[row]:.4g}")
+            a.set_title(f"state {row}: d = {d[row]:.4g}, F = {F[row]:.4g}", fontsize=10)
         fig.suptitle(f"{path}: {p.get('indenter')} indenter, {p.get('boundary')} boundary,"
                      f" {p.get('Nx')} x {p.get('Ny')}, dgamma = {p.get('gamma')}, {p.get('criterion', 'pohrt-popov')}"
                      + ("" if p.get("complete", 1) else " (incomplete run)"), fontsize=10)
@@ -107,13 +120,14 @@ def main(argv=None):
     ap.add_argument("file", help="results file written with -adh_output")
     ap.add_argument("--out", help="image file (default: FILE.png)")
     ap.add_argument("--states", help="curve rows of the contact maps, comma-separated (default: largest load and largest tension)")
+    ap.add_argument("--compare", nargs="*", default=(), help="other results files whose curves go beside")
     a = ap.parse_args(argv)
     try:
         states = [int(s) for s in a.states.split(",")] if a.states else None
     except ValueError:
         ap.error(f"--states: comma-separated integers, got {a.states!r}")
     try:
-        out = plot(a.file, a.out, states)
+        out = plot(a.file, a.out, states, a.compare)
     except (OSError, KeyError) as e:
         print(f"adhbem.plot: {a.file}: {e}", file=sys.stderr)
         return 1

@@ -93,9 +93,13 @@ def test_sigterm_then_restart(tmp_path, reference):
 
 
 def test_sigkill_then_restart(tmp_path, reference):
+    """Killed at a random state (printed), so that any state's checkpoint gets exercised."""
     serial_only()
+    import random
+    k = random.randint(2, 15)
+    print(f"\nSIGKILL after {k} monitored states")
     ck = tmp_path / "ck.h5"
-    rc, _ = stop_after(2, 9, signal.SIGKILL, "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "part.h5"))
+    rc, _ = stop_after(2, k, signal.SIGKILL, "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "part.h5"))
     assert rc != 0 and ck.exists()
     out = tmp_path / "rest.h5"
     r = adhbem(2, "-adh_restart", str(ck), "-adh_output", str(out))

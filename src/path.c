@@ -135,12 +135,18 @@ PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscR
 
 PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
 {
+  PetscInt mults0, ffts0, mults1, ffts1;
+
   PetscFunctionBegin;
   PetscCall(PetscMemzero(st, sizeof(*st)));
   PetscCall(AdhSolverGetState(s, &st->d, &st->force, &st->area, &st->contact_points, &st->outer_iterations, &st->ksp_iterations, &st->compliance_applications));
+  /* the statistics' own multiplies (crack-closure's detach_ratio) count with the state */
+  PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
   PetscCall(AdhStatisticsCompute_Private(s, st));
+  PetscCall(AdhSolverMultCount_Private(s, &mults1, &ffts1));
+  st->compliance_applications += mults1 - mults0;
   st->pulled_off = s->pulled_off;
-  st->fft_pairs  = s->step_ffts;
+  st->fft_pairs  = s->step_ffts + ffts1 - ffts0;
   PetscFunctionReturn(0);
 }
 

@@ -313,6 +313,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
     PetscCall(KSPSetFromOptions(s->ksp));
     if (s->cops.setup) PetscCall(s->cops.setup(s));
+    if (s->crops.setup) PetscCall(s->crops.setup(s));
     s->setup = PETSC_TRUE;
   }
   PetscCall(ComputeCriticalStress(s));
@@ -380,7 +381,8 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s\n", s->criterion_type));
+  if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings\n", s->criterion_type, (double)s->criterion_radius));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s\n", s->criterion_type));
   {
     PetscLogDouble total, node;
     PetscCall(AdhSolverEstimateMemory(s, &total, &node));

@@ -24,6 +24,7 @@ typedef struct {
 /* What a detachment criterion does (criterion.c): evaluate the current state, removing the points
    that let go (detach) or giving the largest load over its limit on the set (ratio). */
 typedef struct {
+  PetscErrorCode (*setup)(AdhSolver); /* at the solver's set-up: what the criterion needs on the grid */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
   PetscErrorCode (*destroy)(AdhSolver);
   PetscBool certifiable; /* decided by p alone: the certified early stop of intermediate solves applies */

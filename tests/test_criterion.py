@@ -94,6 +94,15 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
              dict(n=N, size=float(N), gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
                   attach="reach", hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7, path=[0.0, 0.3, -0.3],
                   steps=4)]
+    # a one-row groove across a sphere at the rank boundaries of 2 and 3 ranks, with the smallest
+    # radius: the pairing of open points looks two rows away, across the boundary
+    x = (np.arange(48) - 24 + 0.5) / 48
+    X, Y = np.meshgrid(x, x)
+    for row in (16, 24):
+        h = (X ** 2 + Y ** 2) / 2.0
+        h[row, :] += 0.05
+        cases.append(dict(n=48, size=1.0, topography=h, topography_kind="gap", gamma=2e-4, start="hertz",
+                          path=[0.01, -0.01], steps=10, criterion_radius=1.0))
     mpi = PETSc.COMM_WORLD.tompi4py()
     for opts in cases:
         world = adhbem.Solver(criterion="crack-closure", **opts).solve_path()
@@ -110,6 +119,9 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
 @pytest.mark.parametrize("args, says", [
     (["-adh_criterion", "griffith"], "-adh_criterion"),
     (["-adh_criterion", "crack-closure", "-adh_criterion_radius", "0.5"], "-adh_criterion_radius"),
+    # a periodic cell too narrow for the averaging disk: refused at set-up, before any file
+    (["-adh_criterion", "crack-closure", "-adh_n", "12,64", "-adh_boundary", "periodic", "-adh_path", "0.001,0"],
+     "a periodic cell needs more than 12 points per side"),
 ])
 def test_bad_criterion_options(tmp_path, args, says):
     serial_only()

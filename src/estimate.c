@@ -40,8 +40,8 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   PetscFunctionReturn(0);
 }
 
-/* Refuse a grid that the build's indices cannot address, or that clearly does not fit into the
-   memory of a node (-adh_memory_check 0 skips the latter). */
+/* Refuse a grid that clearly does not fit into the memory of a node (-adh_memory_check 0 skips
+   this), or that the build's indices cannot address. */
 PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
 {
   const AdhGrid        g      = s->grid;
@@ -51,10 +51,11 @@ PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
   long                 pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
 
   PetscFunctionBegin;
+  if (s->memory_check && pages > 0 && page > 0) {
+    physical = (PetscLogDouble)pages * (PetscLogDouble)page;
+    PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
+    PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
+  }
   PetscCheck(points <= (PetscLogDouble)PETSC_MAX_INT, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " %s %.3g grid points, more than this PETSc build's %d-bit indices address (%" PetscInt_FMT "); use a PETSc built with 64-bit indices, or a smaller grid", g->Nx, g->Ny, padded ? "needs a zero-padded transform (free boundary) of" : "has", (double)points, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
-  if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
-  physical = (PetscLogDouble)pages * (PetscLogDouble)page;
-  PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
-  PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
   PetscFunctionReturn(0);
 }

@@ -19,7 +19,8 @@ def serial_only():
 
 
 @pytest.mark.parametrize("args, says", [
-    (["-adh_n", "200000"], "64-bit indices"),                                        # 1.6e11 padded points
+    (["-adh_n", "200000"], "GB of memory"),                                          # 4e10 points, 8 TB
+    (["-adh_n", "200000", "-adh_memory_check", "0"], "64-bit indices"),              # 1.6e11 padded points
     (["-adh_n", "40000,30000", "-adh_boundary", "periodic"], "GB of memory"),         # 1.2e9 points, 120 GB
 ])
 def test_too_large_grids_stop_at_once(tmp_path, args, says):

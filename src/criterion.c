@@ -6,7 +6,8 @@
                   Calibrated on one element, it lets go late on straight edges: along a grid axis
                   as if dgamma were 1.85 times larger, at 45 degrees 1.34 times.
    crack-closure: the energy release rate of the contact edge, estimated by virtual crack closure
-                  (Rybicki and Kanninen 1977). Each open point next to the set is paired with the
+                  (Rybicki and Kanninen 1977; applied to this BEM before in Front. Mech. Eng. 7,
+                  754782 (2021), on the parabolic and sinusoidal contacts). Each open point next to the set is paired with the
                   point of the set beside it that carries the largest tension: the front point
                   (a point one row behind the front, as every other one on an edge at 26.6
                   degrees, shares its open neighbour with a front point). A front point i under

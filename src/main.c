@@ -89,6 +89,7 @@ int main(int argc, char **argv)
   if (ierr && traceback) return (int)ierr;
   /* an error every rank saw ends the run cleanly; one that only some ranks saw must abort the others */
   if (ierr && !error_on_every_rank) MPI_Abort(PETSC_COMM_WORLD, 1);
+  if (!traceback) PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return ierr ? 1 : 0;
 }

@@ -232,29 +232,16 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
   PetscFunctionReturn(0);
 }
 
-/* The state of s->restart: the contact set, pressure and position; the curve so far. */
-PetscErrorCode AdhCheckpointRead_Private(AdhSolver s, PetscInt *leg, PetscInt *step)
+/* The checkpoint's state from the open viewer v, after checking that it fits this run. */
+static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscInt *step)
 {
-  PetscViewer        v;
   Vec                mask, path, all;
   VecScatter         toall;
   const PetscScalar *m, *a;
   PetscInt           states = 0, npath = 0, pulled = 0;
   PetscMPIInt        rank;
-  PetscBool          exists;
-  PetscErrorCode     ierr;
 
   PetscFunctionBegin;
-  PetscCall(PetscTestFile(s->restart, 'r', &exists));
-  PetscCheck(exists, s->comm, PETSC_ERR_FILE_OPEN, "-adh_restart: cannot read %s", s->restart);
-  /* a truncated or foreign file fails in HDF5: say which option and file */
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = PetscViewerHDF5Open(s->comm, s->restart, FILE_MODE_READ, &v);
-  PetscCall(PetscPopErrorHandler());
-  PetscCheck(!ierr, s->comm, PETSC_ERR_FILE_READ, "-adh_restart %s: not a readable HDF5 file (truncated or corrupted?)", s->restart);
-  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "version", &exists));
-  if (!exists) PetscCall(PetscViewerDestroy(&v));
-  PetscCheck(exists, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint (written by -adh_checkpoint)", s->restart);
   PetscCall(CheckShape(s, v));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "npath", PETSC_INT, NULL, &npath));
   PetscCheck(npath == s->npath, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path has %" PetscInt_FMT " points, this run's %" PetscInt_FMT, s->restart, npath, s->npath);
@@ -295,7 +282,30 @@ PetscErrorCode AdhCheckpointRead_Private(AdhSolver s, PetscInt *leg, PetscInt *s
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(ReadCurve(s, v, states));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+/* The state of s->restart: the contact set, pressure and position; the curve so far. */
+PetscErrorCode AdhCheckpointRead_Private(AdhSolver s, PetscInt *leg, PetscInt *step)
+{
+  PetscViewer    v;
+  PetscBool      exists;
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscTestFile(s->restart, 'r', &exists));
+  PetscCheck(exists, s->comm, PETSC_ERR_FILE_OPEN, "-adh_restart: cannot read %s", s->restart);
+  /* a truncated or foreign file fails in HDF5: say which option and file */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = PetscViewerHDF5Open(s->comm, s->restart, FILE_MODE_READ, &v);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, s->comm, PETSC_ERR_FILE_READ, "-adh_restart %s: not a readable HDF5 file (truncated or corrupted?)", s->restart);
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "version", &exists));
+  if (!exists) PetscCall(PetscViewerDestroy(&v));
+  PetscCheck(exists, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint (written by -adh_checkpoint)", s->restart);
+  ierr = ReadOpen(s, v, leg, step);
   PetscCall(PetscViewerDestroy(&v));
+  PetscCall(ierr);
   s->adhesive = PETSC_TRUE;
   PetscCall(AdhSolverRebuildSet_Private(s));
   PetscFunctionReturn(0);

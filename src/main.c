@@ -34,15 +34,13 @@ static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, con
   return n;
 }
 
-static PetscErrorCode Run(void)
+static PetscErrorCode Run(AdhSolver solver)
 {
-  AdhSolver       solver;
   const AdhCurve *curve;
   PetscBool       has_help, view = PETSC_FALSE;
   PetscReal       Fmin = 0, dmin = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
   PetscCall(AdhSolverSetFromOptions(solver));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_view", &view, NULL));
   PetscCall(PetscOptionsHasHelp(NULL, &has_help));
@@ -51,7 +49,6 @@ static PetscErrorCode Run(void)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_view: <FALSE> Print the solver set-up (None)\n"));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_traceback: <FALSE> On an error, print PETSc's traceback instead of one line (None)\n"));
     PetscCall(AdhSolverSetUp(solver));
-    PetscCall(AdhSolverDestroy(&solver));
     PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
@@ -73,7 +70,6 @@ static PetscErrorCode Run(void)
     }
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults, ffts));
   }
-  PetscCall(AdhSolverDestroy(&solver));
   PetscFunctionReturn(0);
 }
 
@@ -81,14 +77,17 @@ int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscBool      traceback = PETSC_FALSE;
+  AdhSolver      solver;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));
-  ierr = Run();
+  PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
+  ierr = Run(solver);
   if (ierr && traceback) return (int)ierr;
   /* an error every rank saw ends the run cleanly; one that only some ranks saw must abort the others */
   if (ierr && !error_on_every_rank) MPI_Abort(PETSC_COMM_WORLD, 1);
+  PetscCall(AdhSolverDestroy(&solver));
   if (!traceback) PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return ierr ? 1 : 0;

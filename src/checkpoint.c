@@ -205,10 +205,12 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
     PetscBool same = PETSC_FALSE;
     if (shape[k].type == PETSC_STRING) {
       char *saved = NULL;
+      char  text[64];
       PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_STRING, NULL, &saved));
       PetscCall(PetscStrcmp(saved, (const char *)shape[k].value, &same));
-      PetscCheck(same, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %s, this run %s", s->restart, shape[k].option, saved, (const char *)shape[k].value);
+      PetscCall(PetscStrncpy(text, saved, sizeof(text)));
       PetscCall(PetscFree(saved));
+      PetscCheck(same, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %s, this run %s", s->restart, shape[k].option, text, (const char *)shape[k].value);
     } else if (shape[k].type == PETSC_INT) {
       PetscInt saved = 0;
       PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_INT, NULL, &saved));

@@ -93,7 +93,7 @@ typedef struct {
   PetscReal radius; /* the release rate is averaged over the edge points within radius grid spacings */
   PetscInt  width;  /* ghost rows: ceil(radius) */
   DM        da;     /* the grid's layout with width ghost rows each side (periodic on a periodic cell) */
-  Vec       u, G;   /* u = K p (NaN on the set), G per edge point (NaN elsewhere) */
+  Vec       u, G;   /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
   Vec       ul, hl, Gl, pl; /* the same with their ghosts, and h and p */
 } CrackClosure;
 
@@ -156,7 +156,7 @@ static PetscBool Owns(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gy
   return PETSC_TRUE;
 }
 
-/* The release rate of every edge point (pass 1), averaged over the edge points within the radius
+/* The release rate of every front point (pass 1), averaged over the front points within the radius
    (pass 2), against dgamma; under detach, removal where either rule says so. The gap of the
    current p is left in s->g. */
 static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
@@ -220,7 +220,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
   PetscCall(DMDAVecRestoreArrayRead(cc->da, cc->ul, &ul));
   PetscCall(DMGlobalToLocal(cc->da, cc->G, INSERT_VALUES, cc->Gl));
 
-  /* pass 2: the mean release rate of the edge points within the radius, against dgamma */
+  /* pass 2: the mean release rate of the front points within the radius, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
   PetscCall(DMDAVecGetArrayRead(cc->da, cc->Gl, &Gl));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
@@ -238,7 +238,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
             PetscReal Gn;
             if ((PetscReal)(di * di + dj * dj) > rad2 || !Neighbour(g, wrap, gys, gym, i, j, di, dj, &a, &b)) continue;
             Gn = PetscRealPart(Gl[b][a]);
-            if (PetscIsNanReal(Gn)) continue; /* not on the edge */
+            if (PetscIsNanReal(Gn)) continue; /* not on the front */
             sum += Gn;
             n++;
           }

@@ -244,7 +244,9 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscReal          elimit = PETSC_MAX_REAL, efirst;
 
   PetscFunctionBegin;
-  PetscCall(AdhSolverComputeGap_Private(s));
+  /* the detach test that came just before may have computed this very gap (crack-closure) */
+  if (!s->gap_current) PetscCall(AdhSolverComputeGap_Private(s));
+  s->gap_current = PETSC_FALSE;
   PetscCall(VecGetLocalSize(s->g, &n));
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));

@@ -62,6 +62,7 @@ struct _n_AdhSolver {
   Mat       K;                /* compliance */
   Mat       S;                /* periodic stiffness: the preconditioner */
   Vec       h, p, g;
+  PetscBool gap_current;       /* g is the gap of the current p: the detach test just computed it and let nothing go */
   Vec       Sigma_field;      /* critical stress of a dgamma field; NULL for a uniform dgamma (Sigma) */
   Vec       Sigma_view;       /* a uniform Sigma as a grid vector, made when asked for (AdhSolverGetFields) */
   Vec       u;                /* made when asked for (AdhSolverGetDisplacement_Private) */

@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "solverimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 1
+#define ADH_CHECKPOINT_VERSION 2
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -56,31 +56,8 @@ static PetscErrorCode Fingerprints(AdhSolver s, PetscReal f[4])
   PetscFunctionReturn(0);
 }
 
-/* Every column of the curve as a 1-D dataset of the current group. */
-static PetscErrorCode WriteCurve(AdhSolver s, PetscViewer v)
-{
-  const AdhCurve *c = &s->curve;
-  PetscMPIInt     rank;
-  Vec             col;
-  PetscScalar    *a;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(VecCreateMPI(s->comm, rank ? 0 : c->n, c->n, &col));
-  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-    PetscCall(PetscObjectSetName((PetscObject)col, AdhCurveColumns[j].name));
-    PetscCall(VecGetArrayWrite(col, &a));
-    if (!rank)
-      for (PetscInt k = 0; k < c->n; k++) a[k] = AdhStateValue(&c->state[k], j);
-    PetscCall(VecRestoreArrayWrite(col, &a));
-    PetscCall(VecView(col, v));
-  }
-  PetscCall(VecDestroy(&col));
-  PetscFunctionReturn(0);
-}
-
-/* The curve of n states from the current group, on every rank. */
-static PetscErrorCode ReadCurve(AdhSolver s, PetscViewer v, PetscInt n)
+/* A 1-D dataset of n values of the current group (written by rank 0) onto every rank. */
+static PetscErrorCode ReadRealArray(AdhSolver s, PetscViewer v, const char name[], PetscInt n, PetscReal *values)
 {
   PetscMPIInt        rank;
   Vec                col, all;
@@ -89,26 +66,39 @@ static PetscErrorCode ReadCurve(AdhSolver s, PetscViewer v, PetscInt n)
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(VecCreateMPI(s->comm, rank ? 0 : n, n, &col));
+  PetscCall(PetscObjectSetName((PetscObject)col, name));
+  PetscCall(VecLoad(col, v));
+  PetscCall(VecScatterCreateToAll(col, &toall, &all));
+  PetscCall(VecScatterBegin(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  for (PetscInt k = 0; k < n; k++) values[k] = PetscRealPart(a[k]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&col));
+  PetscFunctionReturn(0);
+}
+
+/* The curve of n states (written by AdhOutputWriteCurve_Private) from the current group. */
+static PetscErrorCode ReadCurve(AdhSolver s, PetscViewer v, PetscInt n)
+{
+  PetscReal *column;
+
+  PetscFunctionBegin;
   PetscCall(AdhCurveDestroy_Private(&s->curve));
   for (PetscInt k = 0; k < n; k++) {
     AdhState st;
     PetscCall(PetscMemzero(&st, sizeof(st)));
     PetscCall(AdhCurveAppend_Private(&s->curve, &st));
   }
-  PetscCall(VecCreateMPI(s->comm, rank ? 0 : n, n, &col));
-  PetscCall(VecScatterCreateToAll(col, &toall, &all));
+  PetscCall(PetscMalloc1(n + 1, &column));
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-    PetscCall(PetscObjectSetName((PetscObject)col, AdhCurveColumns[j].name));
-    PetscCall(VecLoad(col, v));
-    PetscCall(VecScatterBegin(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(toall, col, all, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecGetArrayRead(all, &a));
-    for (PetscInt k = 0; k < n; k++) AdhStateSetValue(&s->curve.state[k], j, PetscRealPart(a[k]));
-    PetscCall(VecRestoreArrayRead(all, &a));
+    PetscCall(ReadRealArray(s, v, AdhCurveColumns[j].name, n, column));
+    for (PetscInt k = 0; k < n; k++) AdhStateSetValue(&s->curve.state[k], j, column[k]);
   }
-  PetscCall(VecScatterDestroy(&toall));
-  PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&col));
+  PetscCall(PetscFree(column));
   PetscFunctionReturn(0);
 }
 
@@ -131,7 +121,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
 {
   char        part[PETSC_MAX_PATH_LEN + 8];
   PetscViewer v;
-  Vec         mask, path;
+  Vec         mask;
   Shape       shape[16];
   PetscInt    n, Nx, Ny, version = ADH_CHECKPOINT_VERSION, npath = s->npath, pulled = s->pulled_off;
   PetscReal   Lx, Ly;
@@ -169,20 +159,10 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
     PetscCall(VecView(s->xunit, v));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(VecCreateMPI(s->comm, rank ? 0 : s->npath, s->npath, &path));
-  PetscCall(PetscObjectSetName((PetscObject)path, "path"));
-  if (!rank) {
-    PetscScalar *a;
-    PetscCall(VecGetArrayWrite(path, &a));
-    for (PetscInt k = 0; k < s->npath; k++) a[k] = s->path[k];
-    PetscCall(VecRestoreArrayWrite(path, &a));
-  }
-  PetscCall(VecView(path, v));
-  PetscCall(VecDestroy(&path));
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
-  PetscCall(WriteCurve(s, v));
+  PetscCall(AdhOutputWriteCurve_Private(s, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PetscViewerDestroy(&v));
   if (!rank) ok = rename(part, s->checkpoint) == 0;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
@@ -237,29 +217,26 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 /* The checkpoint's state from the open viewer v, after checking that it fits this run. */
 static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscInt *step)
 {
-  Vec                mask, path, all;
-  VecScatter         toall;
-  const PetscScalar *m, *a;
-  PetscInt           states = 0, npath = 0, pulled = 0;
-  PetscMPIInt        rank;
+  Vec                mask;
+  const PetscScalar *m;
+  PetscReal         *path;
+  PetscInt           states = 0, npath = 0, pulled = 0, k;
 
   PetscFunctionBegin;
   PetscCall(CheckShape(s, v));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "npath", PETSC_INT, NULL, &npath));
   PetscCheck(npath == s->npath, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path has %" PetscInt_FMT " points, this run's %" PetscInt_FMT, s->restart, npath, s->npath);
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(VecCreateMPI(s->comm, rank ? 0 : npath, npath, &path));
-  PetscCall(PetscObjectSetName((PetscObject)path, "path"));
-  PetscCall(VecLoad(path, v));
-  PetscCall(VecScatterCreateToAll(path, &toall, &all));
-  PetscCall(VecScatterBegin(toall, path, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(toall, path, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(all, &a));
-  for (PetscInt k = 0; k < npath; k++) PetscCheck(PetscRealPart(a[k]) == s->path[k], s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path point %" PetscInt_FMT " is %.17g, this run's %.17g", s->restart, k, (double)PetscRealPart(a[k]), (double)s->path[k]);
-  PetscCall(VecRestoreArrayRead(all, &a));
-  PetscCall(VecScatterDestroy(&toall));
-  PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&path));
+  PetscCall(PetscMalloc1(npath, &path));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
+  PetscCall(ReadRealArray(s, v, "path", npath, path));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  for (k = 0; k < npath && path[k] == s->path[k]; k++) continue;
+  if (k < npath) {
+    const double saved = (double)path[k];
+    PetscCall(PetscFree(path));
+    SETERRQ(s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint's -adh_path point %" PetscInt_FMT " is %.17g, this run's %.17g", s->restart, k, saved, (double)s->path[k]);
+  }
+  PetscCall(PetscFree(path));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "leg", PETSC_INT, NULL, leg));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "step", PETSC_INT, NULL, step));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "states", PETSC_INT, NULL, &states));
@@ -273,7 +250,7 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   PetscCall(PetscObjectSetName((PetscObject)mask, "contact"));
   PetscCall(VecLoad(mask, v));
   PetscCall(VecGetArrayRead(mask, &m));
-  for (PetscInt k = 0; k < s->nlocal; k++) s->in_set[k] = PetscRealPart(m[k]) > 0.5;
+  for (k = 0; k < s->nlocal; k++) s->in_set[k] = PetscRealPart(m[k]) > 0.5;
   PetscCall(VecRestoreArrayRead(mask, &m));
   PetscCall(VecDestroy(&mask));
   if (s->xunit) {

@@ -357,9 +357,27 @@ static PetscErrorCode WriteXDMF(AdhSolver s, const char file[])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+/* The curve into the viewer's current group: every column as a 1-D float64 dataset (counts too:
+   PETSc's IS viewer adds a block dimension), and the path. The results file and the checkpoint
+   both hold it. */
+PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver s, PetscViewer viewer)
 {
   const AdhCurve *c = &s->curve;
+  PetscReal      *column;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(c->n + 1, &column));
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    for (PetscInt k = 0; k < c->n; k++) column[k] = AdhStateValue(&c->state[k], j);
+    PetscCall(WriteRealArray(s, viewer, AdhCurveColumns[j].name, c->n, column));
+  }
+  PetscCall(PetscFree(column));
+  PetscCall(WriteRealArray(s, viewer, "path", s->npath, s->path));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+{
   char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8];
   PetscMPIInt     rank;
   int             ok = 1;
@@ -368,14 +386,7 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   PetscFunctionBegin;
   PetscCall(WriteAttributes(s, *viewer));
   PetscCall(PetscViewerHDF5PushGroup(*viewer, "/curve"));
-  /* Every column as a 1-D float64 dataset (counts too: PETSc's IS viewer adds a block dimension). */
-  PetscCall(PetscMalloc1(c->n + 1, &column));
-  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-    for (PetscInt k = 0; k < c->n; k++) column[k] = AdhStateValue(&c->state[k], j);
-    PetscCall(WriteRealArray(s, *viewer, AdhCurveColumns[j].name, c->n, column));
-  }
-  PetscCall(PetscFree(column));
-  PetscCall(WriteRealArray(s, *viewer, "path", s->npath, s->path));
+  PetscCall(AdhOutputWriteCurve_Private(s, *viewer));
   PetscCall(PetscViewerHDF5PopGroup(*viewer));
   if (s->nfield_states) {
     PetscCall(PetscMalloc1(s->nfield_states, &column));

@@ -186,5 +186,6 @@ PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
 PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);
 PETSC_INTERN PetscErrorCode AdhOutputClose_Private(AdhSolver, const char file[], PetscViewer *);
+PETSC_INTERN PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver, PetscViewer);
 PETSC_INTERN PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver, const char option[], const char file[]);
 #endif

@@ -265,96 +265,86 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteCSV(AdhSolver s, const char csv[])
+/* Rank 0 writes a text file through body(s, h5, fp) to NAME.part and renames it NAME, so that a
+   file is either whole or absent; every rank learns whether it worked. */
+static PetscErrorCode WriteTextFile(AdhSolver s, const char name[], void (*body)(AdhSolver, const char h5[], FILE *), const char h5[])
 {
-  const AdhCurve *c = &s->curve;
-  PetscMPIInt     rank;
-  char            part[PETSC_MAX_PATH_LEN + 8];
-  int             ok = 1;
+  char        part[PETSC_MAX_PATH_LEN + 16];
+  PetscMPIInt rank;
+  int         ok = 1;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(PartName(csv, part, sizeof(part)));
+  PetscCall(PartName(name, part, sizeof(part)));
   if (!rank) {
     FILE *fp = fopen(part, "w");
     if (fp) {
-      fprintf(fp, "step");
-      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
-      fprintf(fp, "\n");
-      for (PetscInt k = 0; k < c->n; k++) {
-        fprintf(fp, "%" PetscInt_FMT, k);
-        for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-          if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&c->state[k], j));
-          else fprintf(fp, ",%.17g", (double)AdhStateValue(&c->state[k], j));
-        }
-        fprintf(fp, "\n");
-      }
+      body(s, h5, fp);
       ok = !ferror(fp);
       ok = (fclose(fp) == 0) && ok;
-      ok = ok && rename(part, csv) == 0;
+      ok = ok && rename(part, name) == 0;
     } else ok = 0;
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
-  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", csv);
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", name);
   PetscFunctionReturn(0);
+}
+
+/* The curve as CSV: a step column, then one column per curve column. */
+static void CSVBody(AdhSolver s, const char h5[], FILE *fp)
+{
+  const AdhCurve *c = &s->curve;
+
+  fprintf(fp, "step");
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
+  fprintf(fp, "\n");
+  for (PetscInt k = 0; k < c->n; k++) {
+    fprintf(fp, "%" PetscInt_FMT, k);
+    for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+      if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&c->state[k], j));
+      else fprintf(fp, ",%.17g", (double)AdhStateValue(&c->state[k], j));
+    }
+    fprintf(fp, "\n");
+  }
 }
 
 /* FILE.xmf beside FILE.h5 when it has fields: an XDMF description that ParaView (and VisIt) open
    as a time series over the states with fields, cell data on the grid of elements: the fields of
    each state (hyperslabs of the timestepped datasets), the profile h, the critical stress, and
    the heights of a rough surface. The time of a frame is its curve row. */
-static PetscErrorCode WriteXDMF(AdhSolver s, const char file[])
+static void XDMFBody(AdhSolver s, const char h5[], FILE *fp)
 {
-  const AdhGrid g = s->grid;
-  PetscMPIInt   rank;
-  char          xmf[PETSC_MAX_PATH_LEN + 8], part[PETSC_MAX_PATH_LEN + 16];
-  const char   *h5 = strrchr(file, '/') ? strrchr(file, '/') + 1 : file; /* relative: the pair can move */
-  const char   *names[4] = {"pressure", "displacement", "gap", "contact"};
+  const AdhGrid  g        = s->grid;
+  const char    *names[4] = {"pressure", "displacement", "gap", "contact"};
   const PetscInt T = s->nfield_states, Nx = g->Nx, Ny = g->Ny;
-  int           ok = 1;
 
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(SiblingName(file, "xmf", xmf, sizeof(xmf)));
-  PetscCall(PartName(xmf, part, sizeof(part)));
-  if (!rank) {
-    FILE *fp = fopen(part, "w");
-    if (fp) {
-      /* cell corners: element (i, j) has its centre at ((i - Nx/2) hx, (j - Ny/2) hy) */
-      const double x0 = (double)((-(Nx / 2) - 0.5) * g->hx), y0 = (double)((-(Ny / 2) - 0.5) * g->hy);
-      fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
-      fprintf(fp, "  <Grid Name=\"states\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-      for (PetscInt t = 0; t < T; t++) {
-        fprintf(fp, "   <Grid Name=\"state %" PetscInt_FMT "\" GridType=\"Uniform\">\n", s->field_states[t]);
-        fprintf(fp, "    <Time Value=\"%" PetscInt_FMT "\"/>\n", s->field_states[t]);
-        fprintf(fp, "    <Topology TopologyType=\"2DCoRectMesh\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\"/>\n", Ny + 1, Nx + 1);
-        fprintf(fp, "    <Geometry GeometryType=\"ORIGIN_DXDY\">\n     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n", y0, x0);
-        fprintf(fp, "     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n    </Geometry>\n", (double)g->hy, (double)g->hx);
-        for (PetscInt f = 0; f < 4; f++) {
-          if (!(s->fields & (1 << f))) continue;
-          fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", names[f]);
-          fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\">\n", Ny, Nx);
-          fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", t, Ny, Nx);
-          fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, f == 3 ? "UChar" : "Float", f == 3 ? 1 : 8, h5, names[f]);
-          fprintf(fp, "     </DataItem>\n    </Attribute>\n");
-        }
-        for (PetscInt f = 0; f < 3; f++) {
-          const char *fixed[3] = {"profile", "critical_stress", "topography"}, *where[3] = {"/fields/profile", "/fields/critical_stress", "/topography"};
-          if (f == 2 && s->indenter.type != ADH_INDENTER_ROUGH) continue;
-          fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", fixed[f]);
-          fprintf(fp, "     <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n    </Attribute>\n", Ny, Nx, h5, where[f]);
-        }
-        fprintf(fp, "   </Grid>\n");
-      }
-      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-      ok = !ferror(fp);
-      ok = (fclose(fp) == 0) && ok;
-      ok = ok && rename(part, xmf) == 0;
-    } else ok = 0;
+  /* cell corners: element (i, j) has its centre at ((i - Nx/2) hx, (j - Ny/2) hy) */
+  const double x0 = (double)((-(Nx / 2) - 0.5) * g->hx), y0 = (double)((-(Ny / 2) - 0.5) * g->hy);
+  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+  fprintf(fp, "  <Grid Name=\"states\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (PetscInt t = 0; t < T; t++) {
+    fprintf(fp, "   <Grid Name=\"state %" PetscInt_FMT "\" GridType=\"Uniform\">\n", s->field_states[t]);
+    fprintf(fp, "    <Time Value=\"%" PetscInt_FMT "\"/>\n", s->field_states[t]);
+    fprintf(fp, "    <Topology TopologyType=\"2DCoRectMesh\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\"/>\n", Ny + 1, Nx + 1);
+    fprintf(fp, "    <Geometry GeometryType=\"ORIGIN_DXDY\">\n     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n", y0, x0);
+    fprintf(fp, "     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n    </Geometry>\n", (double)g->hy, (double)g->hx);
+    for (PetscInt f = 0; f < 4; f++) {
+      if (!(s->fields & (1 << f))) continue;
+      fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", names[f]);
+      fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\">\n", Ny, Nx);
+      fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", t, Ny, Nx);
+      fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, f == 3 ? "UChar" : "Float", f == 3 ? 1 : 8, h5, names[f]);
+      fprintf(fp, "     </DataItem>\n    </Attribute>\n");
+    }
+    for (PetscInt f = 0; f < 3; f++) {
+      const char *fixed[3] = {"profile", "critical_stress", "topography"}, *where[3] = {"/fields/profile", "/fields/critical_stress", "/topography"};
+      if (f == 2 && s->indenter.type != ADH_INDENTER_ROUGH) continue;
+      fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", fixed[f]);
+      fprintf(fp, "     <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n    </Attribute>\n", Ny, Nx, h5, where[f]);
+    }
+    fprintf(fp, "   </Grid>\n");
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
-  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", xmf);
-  PetscFunctionReturn(0);
+  fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
 }
 
 /* The curve into the viewer's current group: every column as a 1-D float64 dataset (counts too:
@@ -378,7 +368,7 @@ PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver s, PetscViewer viewer)
 
 PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
 {
-  char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8];
+  char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], xmf[PETSC_MAX_PATH_LEN + 8];
   PetscMPIInt     rank;
   int             ok = 1;
   PetscReal      *column;
@@ -404,8 +394,12 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s", part, file);
   PetscCall(SiblingName(file, "csv", csv, sizeof(csv)));
-  PetscCall(WriteCSV(s, csv));
-  if (s->nfield_states) PetscCall(WriteXDMF(s, file));
+  PetscCall(WriteTextFile(s, csv, CSVBody, NULL));
+  if (s->nfield_states) {
+    /* the XDMF names the HDF5 file without its directory: the pair can move together */
+    PetscCall(SiblingName(file, "xmf", xmf, sizeof(xmf)));
+    PetscCall(WriteTextFile(s, xmf, XDMFBody, strrchr(file, '/') ? strrchr(file, '/') + 1 : file));
+  }
   PetscCall(PetscFree(s->field_states));
   s->nfield_states = 0;
   PetscFunctionReturn(0);

@@ -73,6 +73,8 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscFunctionReturn(0);
 }
 
+const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contact"};
+
 /* An HDF5 call that fails (a negative return) becomes a PETSc error naming it. */
 #define ADH_H5(call) \
   do { \
@@ -101,16 +103,16 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   chunk[1] = (hsize_t)PetscMax(1, PetscMin(g->Ny, (PetscInt)(1073741824 / g->Nx)));
   chunk[2] = (hsize_t)g->Nx;
   PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file_id, &group));
-  if (!H5Lexists(group, "contact", H5P_DEFAULT)) {
+  if (!H5Lexists(group, AdhFieldNames[3], H5P_DEFAULT)) {
     hid_t plist;
     ADH_H5(filespace = H5Screate_simple(3, dims, maxdims));
     ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
     ADH_H5(H5Pset_chunk(plist, 3, chunk));
-    ADH_H5(dset = H5Dcreate2(group, "contact", H5T_NATIVE_UCHAR, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
+    ADH_H5(dset = H5Dcreate2(group, AdhFieldNames[3], H5T_NATIVE_UCHAR, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
     ADH_H5(H5Pclose(plist));
     ADH_H5(H5Sclose(filespace));
   } else {
-    ADH_H5(dset = H5Dopen2(group, "contact", H5P_DEFAULT));
+    ADH_H5(dset = H5Dopen2(group, AdhFieldNames[3], H5P_DEFAULT));
     ADH_H5(H5Dset_extent(dset, dims));
   }
   offset[0] = (hsize_t)frame;
@@ -314,8 +316,7 @@ static void CSVBody(AdhSolver s, const char h5[], FILE *fp)
    the heights of a rough surface. The time of a frame is its curve row. */
 static void XDMFBody(AdhSolver s, const char h5[], FILE *fp)
 {
-  const AdhGrid  g        = s->grid;
-  const char    *names[4] = {"pressure", "displacement", "gap", "contact"};
+  const AdhGrid  g = s->grid;
   const PetscInt T = s->nfield_states, Nx = g->Nx, Ny = g->Ny;
 
   /* cell corners: element (i, j) has its centre at ((i - Nx/2) hx, (j - Ny/2) hy) */
@@ -330,10 +331,10 @@ static void XDMFBody(AdhSolver s, const char h5[], FILE *fp)
     fprintf(fp, "     <DataItem Dimensions=\"2\" Format=\"XML\">%.17g %.17g</DataItem>\n    </Geometry>\n", (double)g->hy, (double)g->hx);
     for (PetscInt f = 0; f < 4; f++) {
       if (!(s->fields & (1 << f))) continue;
-      fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", names[f]);
+      fprintf(fp, "    <Attribute Name=\"%s\" Center=\"Cell\" AttributeType=\"Scalar\">\n", AdhFieldNames[f]);
       fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\">\n", Ny, Nx);
       fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%" PetscInt_FMT " 0 0 1 1 1 1 %" PetscInt_FMT " %" PetscInt_FMT "</DataItem>\n", t, Ny, Nx);
-      fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, f == 3 ? "UChar" : "Float", f == 3 ? 1 : 8, h5, names[f]);
+      fprintf(fp, "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/fields/%s</DataItem>\n", T, Ny, Nx, f == 3 ? "UChar" : "Float", f == 3 ? 1 : 8, h5, AdhFieldNames[f]);
       fprintf(fp, "     </DataItem>\n    </Attribute>\n");
     }
     for (PetscInt f = 0; f < 3; f++) {

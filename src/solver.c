@@ -58,8 +58,6 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
 /* -adh_fields [LIST]: the fields to write, a comma-separated list of pressure, displacement, gap,
    contact; given alone (or all, 1, true) all four, none (or 0, false) no fields. Inside
    PetscOptionsBegin/End, so that -help shows it. */
-static const char *const AdhFieldNames[] = {"pressure", "displacement", "gap", "contact"};
-
 static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, AdhSolver s)
 {
   char      value[256] = "", *item, *rest;

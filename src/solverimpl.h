@@ -41,6 +41,7 @@ typedef struct {
 
 /* The fields a results file can hold (-adh_fields), as bits. */
 enum { ADH_FIELD_PRESSURE = 1, ADH_FIELD_DISPLACEMENT = 2, ADH_FIELD_GAP = 4, ADH_FIELD_CONTACT = 8, ADH_FIELD_ALL = 15 };
+PETSC_INTERN const char *const AdhFieldNames[4]; /* their names, bit k: AdhFieldNames[k] (output.c) */
 
 struct _n_AdhSolver {
   MPI_Comm    comm;

@@ -80,6 +80,9 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
 /* Lower bound on the smallest eigenvalue of K_CC for any set C of m grid points (periodic: it
    shrinks to zero as C fills the cell, where K_CC becomes singular). */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat, PetscInt m, PetscReal *);
+/* An upper bound on the 2-norm of every row of K, max_k |K e_k|: a change dp of the pressure
+   changes every displacement by at most this times |dp|_2. */
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetRowNormBound(Mat, PetscReal *);
 PETSC_EXTERN PetscErrorCode MatAdhComplianceHasDirectLayout(Mat, PetscBool *);
 PETSC_EXTERN PetscErrorCode MatAdhComplianceMultOnSet(Mat, PetscInt n, const PetscInt local[], Vec xC, Vec yC);
 /* K + c0 (1 1^T)/N: a periodic compliance whose mean mode has the compliance c0 (> 0), which makes

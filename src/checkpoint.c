@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "solverimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 2
+#define ADH_CHECKPOINT_VERSION 3
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -149,6 +149,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "d", PETSC_REAL, &s->d));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "e", PETSC_REAL, &s->e));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulled_off", PETSC_INT, &pulled));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "joined_previous", PETSC_INT, &s->joined_previous));
   PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
   PetscCall(VecView(s->p, v));
   PetscCall(MaskVec(s, &mask));
@@ -243,6 +244,7 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "d", PETSC_REAL, NULL, &s->d));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "e", PETSC_REAL, NULL, &s->e));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "pulled_off", PETSC_INT, NULL, &pulled));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "joined_previous", PETSC_INT, NULL, &s->joined_previous));
   s->pulled_off = (PetscBool)(pulled != 0);
   PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
   PetscCall(VecLoad(s->p, v));

@@ -63,6 +63,7 @@ typedef struct {
   ptrdiff_t    nhalf;                                 /* n0/2 + 1 */
   PetscReal    lambda_min, diagonal;
   PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
+  PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
   PetscInt     nmult;
 } Compliance;
 
@@ -317,6 +318,28 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
   PetscFunctionReturn(0);
 }
 
+/* The 2-norm of one row of the circulant behind the multiplier, by Parseval from the half
+   spectrum (modes kx and n1-kx, ky and n0-ky share a value). Every row of K, and every part of
+   one, is a part of such a row (free: the padded circulant holds every offset of the grid). */
+static PetscErrorCode ComputeRowNorm(Compliance *c)
+{
+  ptrdiff_t a, k0;
+  PetscReal sum = 0.0;
+
+  PetscFunctionBegin;
+  for (a = 0; a < c->t->local_n1; a++) {
+    const ptrdiff_t kx = c->t->local_1_start + a;
+    const PetscReal wx = (kx == 0 || 2 * kx == c->t->n1) ? 1.0 : 2.0;
+    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
+      const PetscReal wy = (k0 == 0 || 2 * k0 == c->t->n0) ? 1.0 : 2.0, m = c->multiplier[a * c->nhalf + k0];
+      sum += wx * wy * m * m;
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, c->comm));
+  c->rownorm = PetscSqrtReal(sum * (PetscReal)c->t->n0 * (PetscReal)c->t->n1);
+  PetscFunctionReturn(0);
+}
+
 /* Stiffness E*|q|/2, the inverse of the periodic compliance symbol; the mean mode gets the
    value of the lowest nonzero wave number so the operator is positive definite. */
 static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
@@ -442,6 +465,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
   else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
   else PetscCall(ComputeStiffnessMultiplier(c));
+  PetscCall(ComputeRowNorm(c));
 
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(DMCreateGlobalVector(grid->da, &x));
@@ -517,6 +541,16 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
   PetscCall(MatShellGetContext(K, &c));
   if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  *rho = c->rownorm;
   PetscFunctionReturn(0);
 }
 

@@ -130,12 +130,76 @@ PetscErrorCode AdhSolverRestoreCriticalStress_Private(AdhSolver s, const PetscSc
   PetscFunctionReturn(0);
 }
 
+/* The gap below which an open point k joins, 0 (penetration) or under reach the gap an element
+   closes under its own critical tension, Sigma K_00; false if k cannot join (it is in the set,
+   or under reach it let go in this step: it stays off, so the step cannot cycle; where
+   Sigma = 0, reach is penetration and the point may come back). */
+static inline PetscBool AttachLimit(AdhSolver s, PetscBool reach, PetscReal K00, const PetscScalar *ta, PetscReal tu, PetscInt k, PetscReal *limit)
+{
+  *limit = reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0;
+  return (PetscBool)(!s->in_set[k] && !(reach && s->left[k] && *limit > 0));
+}
+
+static inline PetscBool AttachReach(AdhSolver s)
+{
+  return (PetscBool)(s->attach == ADH_ATTACH_REACH && s->adhesive);
+}
+
+/* Is the attach test of the exact solution already decided by the iterate x_C of a solve with
+   residual rnorm? The gaps of x differ from the exact ones by K_{:,C} (x - p*), at most
+   rho |x - p*|_2 <= rho ||r||_2 / lambda_min at every point (rho bounds K's row norms; the
+   factor 2 as in the convergence test). Certain when every open point's gap is farther than
+   that from its limit and one at least joins; then g is left as the gap of x (the attach test
+   takes it). Otherwise *needed is the residual at which the points in doubt now would be
+   decided, or 0 when the test is decided and lets nobody join (the solve must converge: it is
+   the step's last). One compliance multiply. */
+static PetscErrorCode AttachDecided(AdhSolver s, Vec xC, PetscReal rnorm, PetscBool *certain, PetscReal *needed)
+{
+  const PetscScalar *xa, *ga, *ta;
+  PetscScalar       *pa;
+  PetscReal          tu, rho, bound, v[2] = {PETSC_MAX_REAL, 0.0};
+  PetscInt           k, counts[2] = {0, 0}; /* points in doubt, points that join */
+  const PetscBool    reach = AttachReach(s);
+  const PetscReal    K00   = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(xC, &xa));
+  PetscCall(VecGetArray(s->p, &pa));
+  for (k = 0; k < s->nset_local; k++) pa[s->set_local[k]] = xa[k];
+  PetscCall(VecRestoreArray(s->p, &pa));
+  PetscCall(VecRestoreArrayRead(xC, &xa));
+  PetscCall(AdhSolverComputeGap_Private(s));
+  PetscCall(MatAdhComplianceGetRowNormBound(s->K, &rho));
+  bound = 2.0 * rnorm * rho / s->lambda_set;
+  PetscCall(VecGetArrayRead(s->g, &ga));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
+  for (k = 0; k < s->nlocal; k++) {
+    PetscReal limit, margin;
+    if (!AttachLimit(s, reach, K00, ta, tu, k, &limit)) continue;
+    margin = PetscRealPart(ga[k]) - limit;
+    if (PetscAbsReal(margin) <= bound) {
+      counts[0]++;
+      v[0] = PetscMin(v[0], PetscAbsReal(margin));
+    } else if (margin < 0) counts[1]++;
+  }
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
+  PetscCall(VecRestoreArrayRead(s->g, &ga));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, s->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 1, MPIU_REAL, MPIU_MIN, s->comm));
+  *certain = (PetscBool)(!counts[0] && counts[1]);
+  *needed  = counts[0] ? v[0] * s->lambda_set / (2.0 * rho) : 0.0;
+  s->gap_current = *certain;
+  PetscFunctionReturn(0);
+}
+
 /* KSP convergence test: the full tolerance ||r|| <= max(rtol ||b||, atol), or, for a solve whose
-   only job is to find the points to detach, a certified early stop. Since every eigenvalue of K_CC
-   is at least lambda_min (Cauchy interlacing), |p_k - p*_k| <= ||r||_2 / lambda_min; once every
-   point's margin |p_k + Sigma_k| exceeds that bound and some point violates, the set of points to
-   detach is the exact solution's and the solve can stop. The factor 2 covers the difference
-   between CG's recursive residual and the true one. */
+   only job is to decide the next update of the set, a certified early stop. Since every eigenvalue
+   of K_CC is at least lambda_min (Cauchy interlacing), |p_k - p*_k| <= ||r||_2 / lambda_min; once
+   every point's margin |p_k + Sigma_k| exceeds that bound and some point violates, the set of
+   points to detach is the exact solution's and the solve can stop. When none violates, the attach
+   test may be decided in the same way (AttachDecided). The factor 2 covers the difference between
+   CG's recursive residual and the true one. Either way the set changes, so the last solve of a
+   step always runs to the full tolerance. */
 PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
 {
   AdhSolver          s = (AdhSolver)ctx;
@@ -172,6 +236,14 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
     if (-v[0] > bound && v[1] > 0) {
       *reason           = KSP_CONVERGED_ATOL; /* marked by certified_stop */
       s->certified_stop = PETSC_TRUE;
+    } else if (-v[0] > bound && s->certify_attach && rnorm <= s->attach_rnorm) {
+      PetscBool certain;
+      PetscReal needed;
+      PetscCall(AttachDecided(s, x, rnorm, &certain, &needed));
+      if (certain) {
+        *reason             = KSP_CONVERGED_ATOL; /* marked by certified_attach */
+        s->certified_attach = PETSC_TRUE;
+      } else s->attach_rnorm = needed ? PetscMin(0.5 * rnorm, needed) : -1.0;
     }
   }
   PetscFunctionReturn(0);
@@ -189,7 +261,8 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
-  s->certified_stop = PETSC_FALSE;
+  s->certified_stop   = PETSC_FALSE;
+  s->certified_attach = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && s->lambda_set <= 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The whole periodic cell is in contact at d = %g: under displacement control the force is undetermined there (d must stay below the mean of the indenter profile, %g); use -adh_control force", (double)s->d, (double)s->mean_h);
   /* The set's points are local to each rank, so restriction is a local gather. */
@@ -212,6 +285,10 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
   s->threshold_local = s->thrC;
   s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.certifiable && s->lambda_set > 0);
+  /* the attach test of displacement control (the gap of h at s->d), where points have been
+     joining lately: elsewhere (unloading) its checks would cost a multiply each for nothing */
+  s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous));
+  s->attach_rnorm   = PETSC_MAX_REAL;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
   PetscCall(KSPSolve(s->ksp, s->bC, s->pC));
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
@@ -238,10 +315,9 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   const PetscScalar *ga, *ta, *ra = NULL;
   PetscReal          tu;
   PetscInt           n, k, count = 0;
-  const PetscBool    reach = s->attach == ADH_ATTACH_REACH && s->adhesive;
-  /* reach: the gap an element closes under its own critical tension, Sigma K_00. */
-  const PetscReal    K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
-  PetscReal          elimit = PETSC_MAX_REAL, efirst;
+  const PetscBool    reach = AttachReach(s);
+  const PetscReal    K00   = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+  PetscReal          elimit = PETSC_MAX_REAL, efirst, limit;
 
   PetscFunctionBegin;
   /* the detach test that came just before may have computed this very gap (crack-closure) */
@@ -251,10 +327,8 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   if (rate) PetscCall(VecGetArrayRead(rate, &ra));
-#define LIMIT(k) (reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0)
-  /* Under reach, a point that let go in this step stays off, so the step cannot cycle; where
-     Sigma = 0, reach is penetration and the point may come back. */
-#define CANDIDATE(k) (!s->in_set[k] && PetscRealPart(ga[k]) < LIMIT(k) && !(reach && s->left[k] && LIMIT(k) > 0))
+#define LIMIT(k) (AttachLimit(s, reach, K00, ta, tu, k, &limit) ? limit : PETSC_MIN_REAL)
+#define CANDIDATE(k) (PetscRealPart(ga[k]) < LIMIT(k))
 #define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
   if (rate) {
     /* the touching depth below which at most max(npoints/4, 1) candidates lie, by bisection */
@@ -367,7 +441,8 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
 
   PetscFunctionBegin;
   PetscCall(AdhSolverCheckBelowFullContact_Private(s, d));
-  s->d = d;
+  s->d           = d;
+  s->joined_step = 0;
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
@@ -377,12 +452,15 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
+    s->joined_step += added;
+    PetscCheck(!s->certified_attach || (!removed && added), s->comm, PETSC_ERR_PLIB, "Certified early stop for an attach test that changed nothing");
     if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
-    PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : "", removed, added, s->npoints));
+    PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
     if (!removed && !added) break;
   }
-  s->step_outer = outer;
-  s->pulled_off = (PetscBool)(had_contact && !s->npoints);
+  s->step_outer      = outer;
+  s->joined_previous = s->joined_step;
+  s->pulled_off      = (PetscBool)(had_contact && !s->npoints);
   PetscFunctionReturn(0);
 }

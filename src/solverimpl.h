@@ -117,6 +117,9 @@ struct _n_AdhSolver {
   const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
   PetscReal bnorm;
   PetscBool certify, certify_solve, certified_stop;
+  PetscBool certify_attach, certified_attach; /* the solve may stop, and did, once the points that join are certain */
+  PetscReal attach_rnorm;     /* the residual below which the next attach check is worth its multiply */
+  PetscInt  joined_step, joined_previous; /* points that joined in this step and in the one before */
 
   /* state and counters */
   PetscReal d;

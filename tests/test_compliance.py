@@ -196,6 +196,25 @@ def test_spectrum_small_grid(comm):
     assert lam[1] > 1e-3 * lam[-1]
 
 
+
+@pytest.mark.mpi
+def test_row_norm_bound_small_grid(comm):
+    """The row-norm bound the certified attach test relies on: no row of the assembled operator is
+    longer; on a periodic cell every row has exactly that length, on a free grid the longest
+    (the centre's) is within a few percent of it (the padded circulant's row holds a few more
+    offsets)."""
+    for Nx, Ny, size in ((9, 7, (1.0, 1.4)), (16, 16, (1.0, 1.0))):
+        for boundary in ("free", "periodic"):
+            K = adhbem.compliance((Nx, Ny), size, 2.0, boundary, comm=comm)
+            M = assembled(K)
+            rows = np.sqrt((M ** 2).sum(axis=1))
+            rho = adhbem.compliance_info(K)["row_norm_bound"]
+            assert rows.max() <= rho * (1 + 1e-12), (boundary, Nx, rows.max(), rho)
+            if boundary == "periodic":
+                assert np.allclose(rows, rho, rtol=1e-12), (Nx, rows.min(), rows.max(), rho)
+            else:
+                assert rows.max() > 0.9 * rho, (Nx, rows.max(), rho)
+
 # ---- Hertz: convergence to the analytic displacement ----------------------------------------------
 
 HERTZ = {}

@@ -199,6 +199,42 @@ def test_certified_stop_periodic():
     assert k_on < k_off
 
 
+def test_certified_attach_same_sets(tmp_path):
+    """The attach test decided before the solve has converged (the gaps' error bounded through
+    K's row norm): on a rough periodic cell with adhesion and reach attach, loading then unloading,
+    it fires, and every state has the same contact set (mask), the same number of set updates and
+    the same force as with -adh_certify 0, with fewer KSP iterations."""
+    import h5py
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    exe = os.path.join(root, "build", "adhbem")
+    base = [exe, "-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_hurst", "0.8",
+            "-adh_rms_slope", "0.1", "-adh_seed", "3", "-adh_boundary", "periodic", "-adh_gamma", "0.004",
+            "-adh_start", "adhesive", "-adh_attach", "reach", "-adh_path", "0,0.6,-0.4", "-adh_steps", "8",
+            "-adh_fields", "contact"]
+    runs = {}
+    for certify in (1, 0):
+        out = tmp_path / f"c{certify}.h5"
+        r = subprocess.run(base + ["-adh_certify", str(certify), "-adh_output", str(out), "-info", ":sys"],
+                           capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+        with h5py.File(out, "r") as f:
+            c = {k: f["curve"][k][()] for k in ("force", "contact_points", "outer_iterations", "ksp_iterations")}
+            c["masks"] = f["fields/contact"][()]
+        c["attach"] = r.stdout.count("(certified attach)")
+        runs[certify] = c
+    on, off = runs[1], runs[0]
+    Frel = np.max(np.abs(on["force"] - off["force"])) / np.max(np.abs(off["force"]))
+    say(f"\ncertified attach, rough 64^2: {on['attach']} certified attach stops; KSP {int(on['ksp_iterations'].sum())}"
+        f" vs {int(off['ksp_iterations'].sum())} without certification; set updates {int(on['outer_iterations'].sum())};"
+        f" max |dF|/max|F| = {Frel:.1e}")
+    assert on["attach"] > 0 and off["attach"] == 0
+    assert np.array_equal(on["masks"], off["masks"])
+    assert np.array_equal(on["contact_points"], off["contact_points"])
+    assert np.array_equal(on["outer_iterations"], off["outer_iterations"])
+    assert Frel < 1e-8
+    assert on["ksp_iterations"].sum() < off["ksp_iterations"].sum()
+
+
 def test_periodic_set_eigenvalue_bound():
     """lambda_min(K_CC) >= lambda_meanfree (1 - m/N) for subsets C of m of N points of a 9 x 7
     periodic cell, lambda_meanfree = 2/(E* q_max) from the symbol."""

@@ -88,7 +88,8 @@ def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavele
 
 
 def compliance_info(K):
-    """dict(lambda_min=..., mult_count=...) of a compliance Mat."""
+    """dict(lambda_min=..., row_norm_bound=..., mult_count=...) of a compliance Mat: a lower bound on
+    the eigenvalues of every K_CC, an upper bound on the 2-norm of every row, the multiplies so far."""
     return _adhbem.compliance_info(K)
 
 

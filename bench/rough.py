@@ -8,9 +8,14 @@ build/adhbem under mpirun; the table gives the wall time, the operation counts (
 KSP iterations, compliance applications, all FFT pairs including the preconditioner's; these do
 not depend on the machine) and the peak resident memory of all ranks together over N^2.
 
-    ./run bench rough [--n 256,512,1024] [--np 1,2] [--steps 25] [--gamma 0.004]
+    ./run bench rough [--n 256,512,1024] [--np 1,2] [--steps 25] [--gamma 0.004] [--breakdown]
+
+With --breakdown, where the KSP iterations go: each solve of each step, from PETSc's -info
+lines, by what the solve decided (a certified stop before points let go or join, a full solve
+that let points go or join, the last full solve of a step).
 """
 import argparse
+import collections
 import os
 import re
 import subprocess
@@ -32,7 +37,31 @@ def depth(n, quantile=0.25):
     return float(out.stdout.split()[-1])
 
 
-def run(n, np_, d1, steps, gamma):
+UPDATE = re.compile(r"update (\d+): (\d+) KSP iterations so far( \(certified (stop|attach)\))?, (\d+) points let go, (\d+) joined")
+KINDS = ("certified, let go", "certified, joined", "full, let go", "full, joined", "full, last of a step")
+
+
+def breakdown(info):
+    """{kind: [solves, KSP iterations]} from the -info lines of AdhSolverStep_Displacement."""
+    out = collections.OrderedDict((k, [0, 0]) for k in KINDS)
+    before = 0
+    for line in info.splitlines():
+        m = UPDATE.search(line)
+        if not m:
+            continue
+        update, sofar, _, cert, gone, joined = m.groups()
+        its = int(sofar) - (0 if update == "1" else before)
+        before = int(sofar)
+        if cert:
+            kind = "certified, let go" if cert == "stop" else "certified, joined"
+        else:
+            kind = "full, let go" if int(gone) else "full, joined" if int(joined) else "full, last of a step"
+        out[kind][0] += 1
+        out[kind][1] += its
+    return out
+
+
+def run(n, np_, d1, steps, gamma, info=False):
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "rough.h5")
         cmd = ["mpirun", "--oversubscribe", "-n", str(np_), os.path.join(ROOT, "build", "adhbem"),
@@ -40,7 +69,7 @@ def run(n, np_, d1, steps, gamma):
                "-adh_rms_slope", "0.1", "-adh_seed", "1", "-adh_boundary", "periodic",
                "-adh_gamma", str(gamma), "-adh_start", "adhesive", "-adh_attach", "reach",
                "-adh_path", f"0,{d1!r},{-0.6 * d1!r}", "-adh_steps", str(steps),
-               "-adh_output", out, "-memory_view"]
+               "-adh_output", out, "-memory_view"] + (["-info", ":sys"] if info else [])
         t0 = time.time()
         p = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.time() - t0
@@ -53,7 +82,8 @@ def run(n, np_, d1, steps, gamma):
     states = len(c["d"])
     return dict(wall=wall, solve=c["seconds"].sum(), states=states, updates=int(c["outer_iterations"].sum()),
                 ksp=int(c["ksp_iterations"].sum()), kapps=int(c["compliance_applications"].sum()),
-                ffts=int(c["fft_pairs"].sum()), worst=int(c["outer_iterations"].max()), mem=mem)
+                ffts=int(c["fft_pairs"].sum()), worst=int(c["outer_iterations"].max()), mem=mem,
+                breakdown=breakdown(p.stdout) if info else None)
 
 
 def main():
@@ -62,6 +92,7 @@ def main():
     ap.add_argument("--np", default="1,2", help="numbers of ranks, comma-separated")
     ap.add_argument("--steps", type=int, default=25, help="steps per leg (2 legs)")
     ap.add_argument("--gamma", type=float, default=0.004, help="work of adhesion")
+    ap.add_argument("--breakdown", action="store_true", help="also where the KSP iterations go, by kind of solve")
     a = ap.parse_args()
     sizes = [int(v) for v in a.n.split(",")]
     ranks = [int(v) for v in a.np.split(",")]
@@ -71,11 +102,16 @@ def main():
     for n in sizes:
         d1 = depth(n)
         for np_ in ranks:
-            r = run(n, np_, d1, a.steps, a.gamma)
+            r = run(n, np_, d1, a.steps, a.gamma, a.breakdown)
             steps = r["states"] - 1
             print(f"{n:>6} {np_:>5} {d1:>8.4g} {r['states']:>6} {r['wall']:>8.1f} {r['solve']:>8.1f} {r['updates']:>8}"
                   f" {r['worst']:>6} {r['ksp']:>8} {r['ksp'] / steps:>8.0f} {r['kapps']:>8} {r['ffts']:>9}"
                   f" {r['mem'] / 1e6:>8.1f} {r['mem'] / n / n:>6.0f}", flush=True)
+            if r["breakdown"]:
+                for kind, (solves, its) in r["breakdown"].items():
+                    if solves:
+                        print(f"{'':>12} {kind:<22} {solves:>6} solves {its:>8} KSP ({100 * its / r['ksp']:4.1f}%)"
+                              f" {its / solves:6.1f} per solve, {solves / steps:5.1f} per step", flush=True)
 
 
 if __name__ == "__main__":

@@ -46,6 +46,8 @@ def breakdown(info):
     out = collections.OrderedDict((k, [0, 0]) for k in KINDS)
     before = 0
     for line in info.splitlines():
+        if not line.startswith("[0] "):  # every rank prints the line: count rank 0's
+            continue
         m = UPDATE.search(line)
         if not m:
             continue

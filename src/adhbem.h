@@ -34,7 +34,7 @@ struct _n_AdhGrid {
   PetscInt  Nx, Ny;   /* elements per side */
   PetscReal Lx, Ly;   /* domain side lengths */
   PetscReal hx, hy;   /* element sizes Lx/Nx, Ly/Ny */
-  DM        da;       /* DMDA on Nx x Ny, one process column: each rank owns whole rows */
+  PetscInt  ys, ym;   /* this rank's rows: j in [ys, ys + ym), all i */
   PetscBool setup;
   const char *prefix; /* options prefix (borrowed), also used by the compliance */
   PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
@@ -51,6 +51,11 @@ PETSC_EXTERN PetscErrorCode AdhGridView(AdhGrid, PetscViewer);
 PETSC_EXTERN PetscErrorCode AdhGridDestroy(AdhGrid *);
 /* Local rows owned by this rank: j in [ys, ys+ym), all i in [0, Nx). */
 PETSC_EXTERN PetscErrorCode AdhGridGetOwnership(AdhGrid, PetscInt *ys, PetscInt *ym);
+/* The number of rows of every rank (an array of the communicator's size; PetscFree it). */
+PETSC_EXTERN PetscErrorCode AdhGridGetRowsPerRank(AdhGrid, PetscInt **ly);
+/* A new Vec on the grid: the rows of this rank, block size Nx (a block per row; PETSc's HDF5
+   viewer writes it as an (Ny, Nx) dataset). */
+PETSC_EXTERN PetscErrorCode AdhGridCreateVector(AdhGrid, Vec *);
 /* Centre of element (i,j): x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy (DESIGN.md section 8). */
 PETSC_EXTERN PetscErrorCode AdhGridGetCoordinates(AdhGrid, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y);
 
@@ -80,6 +85,8 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetLambdaMin(Mat, PetscReal *);
 /* Lower bound on the smallest eigenvalue of K_CC for any set C of m grid points (periodic: it
    shrinks to zero as C fills the cell, where K_CC becomes singular). */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat, PetscInt m, PetscReal *);
+/* The grid behind K: Nx points per row, Ny rows. */
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetGridSize(Mat, PetscInt *Nx, PetscInt *Ny);
 /* An upper bound on the 2-norm of every row of K, max_k |K e_k|: a change dp of the pressure
    changes every displacement by at most this times |dp|_2. */
 PETSC_EXTERN PetscErrorCode MatAdhComplianceGetRowNormBound(Mat, PetscReal *);

@@ -416,7 +416,7 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
     same = (PetscBool)(ys == first_row && ym == t->phys_rows);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, grid->comm));
     if (!same) {
-      PetscCall(DMCreateGlobalVector(grid->da, &x));
+      PetscCall(AdhGridCreateVector(grid, &x));
       PetscCall(VecCreateMPI(grid->comm, t->phys_rows * grid->Nx, grid->Nx * grid->Ny, &t->xfft));
       PetscCall(ISCreateStride(grid->comm, t->phys_rows * grid->Nx, phys_start, 1, &is));
       PetscCall(VecScatterCreate(x, is, t->xfft, is, &t->toFFT));
@@ -468,14 +468,14 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCall(ComputeRowNorm(c));
 
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
-  PetscCall(DMCreateGlobalVector(grid->da, &x));
+  PetscCall(AdhGridCreateVector(grid, &x));
   PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT, (void (*)(void))MatMult_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_GET_DIAGONAL, (void (*)(void))MatGetDiagonal_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_VIEW, (void (*)(void))MatView_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_DESTROY, (void (*)(void))MatDestroy_Compliance));
-  PetscCall(MatSetDM(*K, grid->da));
+  PetscCall(MatSetBlockSizes(*K, c->Nx, c->Nx)); /* a row per block, as the grid vectors */
   PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   if (kind != KIND_PERIODIC) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
@@ -541,6 +541,17 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
   PetscCall(MatShellGetContext(K, &c));
   if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  if (Nx) *Nx = c->Nx;
+  if (Ny) *Ny = c->Ny;
   PetscFunctionReturn(0);
 }
 

@@ -105,8 +105,9 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
 {
   CrackClosure   *cc = (CrackClosure *)s->crdata;
   const AdhGrid   g  = s->grid;
-  const PetscInt *ly = NULL;
-  PetscInt        py, fewest;
+  PetscInt       *ly = NULL;
+  PetscMPIInt     py;
+  PetscInt        fewest;
   const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   DMBoundaryType  b        = periodic ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE;
 
@@ -114,14 +115,16 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   if (cc->da) PetscFunctionReturn(0);
   cc->radius = s->criterion_radius;
   cc->width  = PetscMax(2, (PetscInt)PetscCeilReal(cc->radius));
-  PetscCall(DMDAGetInfo(g->da, NULL, NULL, NULL, NULL, NULL, &py, NULL, NULL, NULL, NULL, NULL, NULL, NULL));
-  PetscCall(DMDAGetOwnershipRanges(g->da, NULL, &ly, NULL));
-  fewest = g->Ny;
-  for (PetscInt r = 0; r < py; r++) fewest = PetscMin(fewest, ly[r]);
   /* on a periodic cell the averaging disk must not meet itself across the cell */
   PetscCheck(!periodic || (g->Nx > 2 * cc->width && g->Ny > 2 * cc->width), s->comm, PETSC_ERR_ARG_SIZ, "-adh_criterion crack-closure looks %" PetscInt_FMT " grid spacings around each point: a periodic cell needs more than %" PetscInt_FMT " points per side (it has %" PetscInt_FMT " x %" PetscInt_FMT "); use a smaller -adh_criterion_radius or a larger grid", cc->width, 2 * cc->width, g->Nx, g->Ny);
+  PetscCallMPI(MPI_Comm_size(g->comm, &py));
+  PetscCall(AdhGridGetRowsPerRank(g, &ly));
+  fewest = g->Ny;
+  for (PetscMPIInt r = 0; r < py; r++) fewest = PetscMin(fewest, ly[r]);
+  if (fewest < cc->width) PetscCall(PetscFree(ly));
   PetscCheck(fewest >= cc->width, s->comm, PETSC_ERR_ARG_SIZ, "-adh_criterion crack-closure looks %" PetscInt_FMT " grid rows around each point: every rank needs at least that many rows (the smallest has %" PetscInt_FMT "; use fewer ranks, a larger grid or a smaller -adh_criterion_radius)", cc->width, fewest);
   PetscCall(DMDACreate2d(g->comm, b, b, DMDA_STENCIL_BOX, g->Nx, g->Ny, 1, py, 1, cc->width, NULL, ly, &cc->da));
+  PetscCall(PetscFree(ly));
   PetscCall(DMSetUp(cc->da));
   PetscCall(DMCreateGlobalVector(cc->da, &cc->u));
   PetscCall(VecDuplicate(cc->u, &cc->G));

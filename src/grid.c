@@ -63,36 +63,66 @@ PetscErrorCode AdhGridSetUp(AdhGrid g)
   PetscCheck(g->Ny >= size, g->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " rows cannot be shared by %d ranks (every rank owns at least one row); use fewer ranks or a larger Ny", g->Ny, size);
   g->hx = g->Lx / g->Nx;
   g->hy = g->Ly / g->Ny;
-  /* One process column (m = 1): each rank owns whole rows, so the global ordering is the natural
-     row-major one j*Nx + i, the same as FFTW's. The rows are split as FFTW-MPI splits those of an
-     Ny x Nx transform, so an operator on the whole periodic grid reads and writes vectors in place,
-     without a redistribution; where that split would leave a rank without rows, DMDA balances the
-     rows to within one. */
+  /* Each rank owns whole rows, so the global ordering is the natural row-major one j*Nx + i, the
+     same as FFTW's. The rows are split as FFTW-MPI splits those of an Ny x Nx transform, so an
+     operator on the whole periodic grid reads and writes vectors in place, without a
+     redistribution; where that split would leave a rank without rows, the rows are balanced to
+     within one. A grid vector is a plain MPI Vec with block size Nx: a row per block, which
+     PETSc's HDF5 viewer writes as an (Ny, Nx) dataset (a DMDA would add its ghost maps, about
+     20 bytes per point, that nothing here uses). */
   {
-    ptrdiff_t n0, s0, n1, s1;
-    PetscInt *ly, rows, fewest;
+    ptrdiff_t   n0, s0, n1, s1;
+    PetscInt    rows, fewest, *ly;
+    PetscMPIInt rank;
 
     PetscCall(AdhInitializePackage());
+    PetscCallMPI(MPI_Comm_rank(g->comm, &rank));
     (void)fftw_mpi_local_size_2d_transposed(g->Ny, g->Nx / 2 + 1, g->comm, &n0, &s0, &n1, &s1);
     rows = (PetscInt)n0;
     PetscCall(PetscMalloc1(size, &ly));
     PetscCallMPI(MPI_Allgather(&rows, 1, MPIU_INT, ly, 1, MPIU_INT, g->comm));
     fewest = ly[0];
     for (PetscMPIInt r = 1; r < size; r++) fewest = PetscMin(fewest, ly[r]);
-    PetscCall(DMDACreate2d(g->comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, g->Nx, g->Ny, 1, size, 1, 0, NULL, fewest > 0 ? ly : NULL, &g->da));
+    if (fewest <= 0)
+      for (PetscMPIInt r = 0; r < size; r++) ly[r] = g->Ny / size + (g->Ny % size > r ? 1 : 0);
+    g->ys = 0;
+    for (PetscMPIInt r = 0; r < rank; r++) g->ys += ly[r];
+    g->ym = ly[rank];
     PetscCall(PetscFree(ly));
   }
-  PetscCall(DMSetUp(g->da));
   g->setup = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode AdhGridGetOwnership(AdhGrid g, PetscInt *ys, PetscInt *ym)
 {
-  PetscInt xs, xm;
+  PetscFunctionBegin;
+  PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
+  if (ys) *ys = g->ys;
+  if (ym) *ym = g->ym;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
+{
+  PetscMPIInt size;
 
   PetscFunctionBegin;
-  PetscCall(DMDAGetCorners(g->da, &xs, ys, NULL, &xm, ym, NULL));
+  PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
+  PetscCallMPI(MPI_Comm_size(g->comm, &size));
+  PetscCall(PetscMalloc1(size, ly));
+  PetscCallMPI(MPI_Allgather(&g->ym, 1, MPIU_INT, *ly, 1, MPIU_INT, g->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhGridSetUp(g));
+  PetscCall(VecCreate(g->comm, v));
+  PetscCall(VecSetSizes(*v, g->ym * g->Nx, g->Nx * g->Ny));
+  PetscCall(VecSetBlockSize(*v, g->Nx));
+  PetscCall(VecSetType(*v, VECSTANDARD));
   PetscFunctionReturn(0);
 }
 
@@ -125,7 +155,6 @@ PetscErrorCode AdhGridDestroy(AdhGrid *grid)
   if (!*grid) PetscFunctionReturn(0);
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[0]));
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[1]));
-  PetscCall(DMDestroy(&(*grid)->da));
   PetscCall(PetscFree(*grid));
   PetscFunctionReturn(0);
 }

@@ -281,7 +281,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(AdhGridSetUp(s->grid));
     PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
     PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
-    PetscCall(DMCreateGlobalVector(s->grid->da, &s->h));
+    PetscCall(AdhGridCreateVector(s->grid, &s->h));
     PetscCall(VecDuplicate(s->h, &s->p));
     PetscCall(VecDuplicate(s->h, &s->g));
     PetscCall(PetscObjectSetName((PetscObject)s->h, "profile"));

@@ -53,8 +53,8 @@ def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavele
     """A periodic, self-affine, Gaussian random surface on an n = N or (Nx, Ny) grid over
     size = L or (Lx, Ly): returns (z, stats).
 
-    z is a ``PETSc.Vec`` of heights (mean zero) on the grid's row layout; it carries the grid's
-    DM, so ``gather(z, z)`` and ``local_rows(z, z)`` work. The power spectrum is flat below
+    z is a ``PETSc.Vec`` of heights (mean zero) on the grid's row layout (a block of Nx values per
+    row), so ``gather(z, z)`` and ``local_rows(z, z)`` work. The power spectrum is flat below
     2 pi/rolloff_wavelength (default: the cell size), ~ q^(-2(1+hurst)) up to
     2 pi/cutoff_wavelength (default: 4 grid spacings) and zero above. Give rms_height or
     rms_slope (default rms_slope 0.1, defined spectrally); it is realised exactly. The same seed
@@ -93,31 +93,27 @@ def compliance_info(K):
     return _adhbem.compliance_info(K)
 
 
-def _grid_dm(obj):
-    if isinstance(obj, PETSc.Mat):
-        return obj.getDM()
-    if isinstance(obj, PETSc.Vec):
-        # Not Vec.getDM(): in petsc4py 3.18 it keeps no reference of its own (a double free at
-        # exit). The composed object is the same DM, typed and referenced.
-        dm = obj.query("__PETSc_dm")
-        if dm is None:
-            raise ValueError("this Vec carries no grid DM (use rough_surface's Vec or pass the Mat)")
-        return dm
-    return obj
-
-
 def grid_shape(obj):
-    """(Nx, Ny) of the grid behind a compliance Mat, a grid Vec that carries its DM, or the DM."""
-    dm = _grid_dm(obj)
-    Nx, Ny = dm.getSizes()
-    return Nx, Ny
+    """(Nx, Ny) of the grid behind a compliance Mat or a grid Vec: a row of the grid is a block
+    (block size Nx) of the Vecs the Mat makes (``K.createVecs()``) and of the solver's fields."""
+    if isinstance(obj, PETSc.Mat):
+        info = _adhbem.compliance_info(obj)
+        return info["Nx"], info["Ny"]
+    if isinstance(obj, PETSc.Vec):
+        Nx, N = obj.getBlockSize(), obj.getSize()
+    else:
+        raise TypeError(f"grid_shape: a compliance Mat or a grid Vec, not {type(obj).__name__}")
+    if Nx <= 1 and N > 1:
+        raise ValueError("this object carries no grid rows (block size 1): pass the compliance Mat, "
+                         "or make the Vec with K.createVecs() or rough_surface")
+    return Nx, N // Nx
 
 
 def row_range(obj):
     """(j0, j1): the rows of the grid this rank owns."""
-    dm = _grid_dm(obj)
-    (_, _), (j0, j1) = dm.getRanges()
-    return j0, j1
+    Nx, _ = grid_shape(obj)
+    r0, r1 = obj.getOwnershipRange()
+    return r0 // Nx, r1 // Nx
 
 
 def local_rows(vec, obj):

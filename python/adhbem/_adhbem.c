@@ -64,7 +64,7 @@ static PyObject *py_rough_surface(PyObject *self, PyObject *args)
   PyPetscCall(AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly));
   ierr = AdhSurfaceSetFromOptions(grid->comm, prefix, &s);
   if (!ierr) ierr = AdhGridSetUp(grid);
-  if (!ierr) ierr = DMCreateGlobalVector(grid->da, &z);
+  if (!ierr) ierr = AdhGridCreateVector(grid, &z);
   if (!ierr) ierr = AdhSurfaceGenerate(grid, &s, z);
   if (ierr) { /* no grid or Vec leaks on bad input */
     (void)VecDestroy(&z);
@@ -84,7 +84,7 @@ static PyObject *py_compliance_info(PyObject *self, PyObject *args)
 {
   PyObject *pymat;
   PetscReal lmin, rho;
-  PetscInt  count;
+  PetscInt  count, Nx, Ny;
   Mat       K;
 
   if (!PyArg_ParseTuple(args, "O", &pymat)) return NULL;
@@ -93,7 +93,8 @@ static PyObject *py_compliance_info(PyObject *self, PyObject *args)
   PyPetscCall(MatAdhComplianceGetLambdaMin(K, &lmin));
   PyPetscCall(MatAdhComplianceGetRowNormBound(K, &rho));
   PyPetscCall(MatAdhComplianceGetMultCount(K, &count));
-  return Py_BuildValue("{s:d,s:d,s:n}", "lambda_min", (double)lmin, "row_norm_bound", (double)rho, "mult_count", (Py_ssize_t)count);
+  PyPetscCall(MatAdhComplianceGetGridSize(K, &Nx, &Ny));
+  return Py_BuildValue("{s:d,s:d,s:n,s:n,s:n}", "lambda_min", (double)lmin, "row_norm_bound", (double)rho, "mult_count", (Py_ssize_t)count, "Nx", (Py_ssize_t)Nx, "Ny", (Py_ssize_t)Ny);
 }
 
 static PyObject *py_love(PyObject *self, PyObject *args)
@@ -377,7 +378,7 @@ static PyMethodDef methods[] = {
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
   {"option_names", py_option_names, METH_NOARGS, "option_names() -> adhbem's own option names (adh_gamma, ...)"},
-  {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, row_norm_bound, mult_count)"},
+  {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, row_norm_bound, mult_count, Nx, Ny)"},
   {"love_coefficient", py_love, METH_VARARGS, "love_coefficient(x, y, hx, hy, Estar) -> displacement per unit pressure"},
   {"chi", py_chi, METH_VARARGS, "chi(hx, hy) -> element self-energy factor"},
   {"chi_square", py_chi_square, METH_VARARGS, "chi_square(h) -> 0.473201 h^3"},

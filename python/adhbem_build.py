@@ -1,9 +1,10 @@
 """Where the adhbem build is: its directory, the executable and the Python extension.
 
-ADHBEM_BUILD names the build directory (relative to the repository's root, or absolute);
-without it, build/. The package (adhbem/__init__.py), the tests, tools and benchmarks all ask
-here. Importing this module starts neither PETSc nor MPI, so a process can ask before it
-launches mpirun.
+./run sets ADHBEM_BUILD to the build of the PETSc it chose: build/ (Debian's PETSc, 32-bit
+indices) or build64/ (ADHBEM_INDICES=64, Debian's PETSc64); without it, build/. A relative
+ADHBEM_BUILD is taken from the repository's root. The package (adhbem/__init__.py), the tests,
+tools and benchmarks all ask here. Importing this module starts neither PETSc nor MPI, so a
+process can ask before it launches mpirun.
 """
 import os
 

@@ -24,14 +24,16 @@ def _import_extension():
     pass between the two, so both must come from the same PETSc (the same PetscInt)."""
     __path__.insert(0, adhbem_build.EXTENSION_DIR)
     if importlib.util.find_spec(__name__ + "._adhbem") is None:
-        raise ImportError(f"adhbem: the C extension is not built in {adhbem_build.BUILD}: run ./run build")
+        raise ImportError(f"adhbem: the C extension is not built in {adhbem_build.BUILD}: run ./run build "
+                          "(ADHBEM_INDICES=64 ./run build for the 64-bit-index PETSc, into build64/)")
     from . import _adhbem
     ours, theirs = 8 * _adhbem.petsc_int_size, 8 * PETSc.IntType().itemsize
     if ours != theirs:
         raise ImportError(f"adhbem: the C extension in {adhbem_build.BUILD} is built against a PETSc with {ours}-bit "
                           f"indices, but petsc4py ({os.path.dirname(petsc4py.__file__)}) is the one of a PETSc with "
-                          f"{theirs}-bit indices: set ADHBEM_BUILD to the build of petsc4py's PETSc, or PYTHONPATH so "
-                          f"that it gives the {ours}-bit petsc4py")
+                          f"{theirs}-bit indices. ./run chooses both (ADHBEM_INDICES=32 or 64); by hand, set "
+                          f"ADHBEM_BUILD to the build of petsc4py's PETSc (build/ for 32-bit, build64/ for 64-bit "
+                          f"indices) or PYTHONPATH so that it gives the {ours}-bit petsc4py")
     return _adhbem
 
 

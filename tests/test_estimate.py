@@ -1,16 +1,13 @@
 """Resources checked before anything is allocated (src/estimate.c): a grid the 32-bit indices
 cannot address and a grid that clearly does not fit into memory stop at once with one message
 naming -adh_n; the memory estimate (-adh_view) bounds the measured peak from above, within 2x."""
-import os
 import re
 import subprocess
 
 import pytest
 
 from adhbem import PETSc
-
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
+from adhbem_build import EXE
 
 
 def serial_only():

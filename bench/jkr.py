@@ -29,7 +29,7 @@ def run(n, ranks, steps, extra):
         for k, v in opts.items():
             args += [f"-adh_{k}", ",".join(repr(x) for x in v) if isinstance(v, list) else str(v)]
         t0 = time.perf_counter()
-        subprocess.run(["mpirun", "--oversubscribe", "-n", str(ranks), os.path.join(ROOT, "build", "adhbem"),
+        subprocess.run(["mpirun", "--oversubscribe", "-n", str(ranks), job.EXE,
                         *args, "-adh_output", out, *extra], check=True, stdout=subprocess.DEVNULL)
         wall = time.perf_counter() - t0
         with h5py.File(out, "r") as f:

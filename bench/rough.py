@@ -24,6 +24,8 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
 
 
 def depth(n, quantile=0.25):
@@ -66,7 +68,7 @@ def breakdown(info):
 def run(n, np_, d1, steps, gamma, info=False):
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "rough.h5")
-        cmd = ["mpirun", "--oversubscribe", "-n", str(np_), os.path.join(ROOT, "build", "adhbem"),
+        cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE,
                "-adh_n", str(n), "-adh_size", str(n), "-adh_indenter", "rough", "-adh_hurst", "0.8",
                "-adh_rms_slope", "0.1", "-adh_seed", "1", "-adh_boundary", "periodic",
                "-adh_gamma", str(gamma), "-adh_start", "adhesive", "-adh_attach", "reach",

@@ -40,22 +40,44 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   PetscFunctionReturn(0);
 }
 
-/* Refuse a grid that clearly does not fit into the memory of a node (-adh_memory_check 0 skips
-   this), or that the build's indices cannot address. */
-PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
+/* Refuse a grid the build's PetscInt cannot address: Nx Ny points, or 4 Nx Ny for the zero-padded
+   transform of a free boundary. With 32-bit indices that is about 46 000 points a side on a
+   periodic cell and 23 000 on a free boundary; with 64-bit indices (sizeof(PetscInt) == 8) the
+   limit lies far beyond any memory, so only a build with 32-bit indices is told to change. */
+static PetscErrorCode CheckIndices(AdhSolver s)
 {
   const AdhGrid        g      = s->grid;
   const PetscBool      padded = (PetscBool)(s->boundary == ADH_BOUNDARY_FREE);
   const PetscLogDouble points = (padded ? 4.0 : 1.0) * (PetscLogDouble)g->Nx * (PetscLogDouble)g->Ny;
-  PetscLogDouble       node, physical;
-  long                 pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  const char          *remedy = sizeof(PetscInt) < 8 ? "build adhbem against a PETSc with 64-bit indices (ADHBEM_INDICES=64 ./run build, into build64/; or your own PETSc configured --with-64-bit-indices), or use a smaller grid" : "use a smaller grid";
 
   PetscFunctionBegin;
-  if (s->memory_check && pages > 0 && page > 0) {
-    physical = (PetscLogDouble)pages * (PetscLogDouble)page;
-    PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
-    PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
-  }
-  PetscCheck(points <= (PetscLogDouble)PETSC_MAX_INT, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " %s %.3g grid points, more than this PETSc build's %d-bit indices address (%" PetscInt_FMT "); use a PETSc built with 64-bit indices, or a smaller grid", g->Nx, g->Ny, padded ? "needs a zero-padded transform (free boundary) of" : "has", (double)points, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
+  PetscCheck(points <= (PetscLogDouble)PETSC_MAX_INT, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " %s %.3g grid points, more than this PETSc build's %d-bit indices address (%" PetscInt_FMT "): %s", g->Nx, g->Ny, padded ? "needs a zero-padded transform (free boundary) of" : "has", (double)points, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT, remedy);
+  PetscFunctionReturn(0);
+}
+
+/* Refuse a grid that clearly does not fit into the memory of a node (-adh_memory_check 0 skips
+   this). */
+static PetscErrorCode CheckMemory(AdhSolver s)
+{
+  const AdhGrid  g = s->grid;
+  PetscLogDouble node, physical;
+  long           pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+
+  PetscFunctionBegin;
+  if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
+  physical = (PetscLogDouble)pages * (PetscLogDouble)page;
+  PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
+  PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
+  PetscFunctionReturn(0);
+}
+
+/* The indices first: no option gets past them, and a user who spread the run over more nodes for
+   its memory would only then learn that it needs another build. */
+PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(CheckIndices(s));
+  PetscCall(CheckMemory(s));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,8 @@
 """Helpers shared by the test files: printing on rank 0, MPI reductions for collective
-assertions, and the JKR scales of a sphere (R = 1, E* = 1 unless given)."""
+assertions, the environment of a child Python, and the JKR scales of a sphere (R = 1, E* = 1
+unless given)."""
 import math
+import os
 
 import numpy as np
 from adhbem import PETSc
@@ -27,6 +29,14 @@ def _max():
 def _min():
     from mpi4py import MPI
     return MPI.MIN
+
+
+def python_env(**extra):
+    """The environment of a child Python that imports adhbem: this one's, with python/ first on
+    PYTHONPATH and the rest kept (./run puts the 64-bit petsc4py there), and `extra`."""
+    python = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")
+    path = os.environ.get("PYTHONPATH")
+    return dict(os.environ, PYTHONPATH=python + (os.pathsep + path if path else ""), **extra)
 
 
 def radius(area):

@@ -11,11 +11,6 @@ import pytest  # noqa: E402
 
 
 @pytest.fixture(scope="session")
-def root():
-    return ROOT
-
-
-@pytest.fixture(scope="session")
 def comm():
     from adhbem import PETSc
     return PETSc.COMM_WORLD

@@ -11,9 +11,8 @@ import numpy as np
 import pytest
 
 from adhbem import PETSc
+from adhbem_build import EXE
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
 OPTS = ["-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_boundary", "periodic", "-adh_gamma", "0.004",

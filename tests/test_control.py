@@ -10,7 +10,6 @@ Every test prints its key numbers (`pytest -s` shows them). Tests marked `mpi` a
 assert only on all-reduced values, so a failure never leaves a rank waiting in a collective.
 """
 import math
-import os
 import subprocess
 import time
 
@@ -19,6 +18,7 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from adhbem_build import EXE
 from common import _max, _min, gamma_for, jkr_scales, radius, rank0, say  # noqa: E402
 
 R = 1.0   # sphere radius
@@ -200,7 +200,7 @@ def test_reloading_after_pull_off():
 
 # ---- Bad input -----------------------------------------------------------------------------------------
 
-def test_force_control_bad_input(root, tmp_path):
+def test_force_control_bad_input(tmp_path):
     """A negative first force with the Hertz start, pulloff_rtol = 0, and the same from the
     executable (non-zero exit, the option named, no results file), an unknown control type."""
     with pytest.raises(PETSc.Error) as e:
@@ -212,9 +212,8 @@ def test_force_control_bad_input(root, tmp_path):
     with pytest.raises(PETSc.Error):
         adhbem.Solver(n=16, control="forse", path=[0.01], steps=1)
 
-    exe = os.path.join(root, "build", "adhbem")
     out = tmp_path / "x.h5"
-    r = subprocess.run([exe, "-adh_n", "16", "-adh_control", "force", "-adh_start", "hertz",
+    r = subprocess.run([EXE, "-adh_n", "16", "-adh_control", "force", "-adh_start", "hertz",
                         "-adh_path", "-0.1,0.1", "-adh_output", str(out)],
                        capture_output=True, text=True, timeout=60)
     msg = r.stdout + r.stderr
@@ -224,7 +223,7 @@ def test_force_control_bad_input(root, tmp_path):
     assert lines, msg[-2000:]
     assert not out.exists() and not (tmp_path / "x.csv").exists()
 
-    r = subprocess.run([exe, "-adh_n", "16", "-adh_control", "forse", "-adh_path", "0.1",
+    r = subprocess.run([EXE, "-adh_n", "16", "-adh_control", "forse", "-adh_path", "0.1",
                         "-adh_output", str(out)], capture_output=True, text=True, timeout=60)
     msg = r.stdout + r.stderr
     lines = [ln for ln in msg.splitlines() if "-adh_control" in ln and "forse" in ln]
@@ -268,11 +267,11 @@ def test_force_control_ranks_give_the_same_curve():
     assert relF < 1e-10 and reld < 1e-10
 
 
-def test_force_control_without_adhesion_comes_off_at_zero(root):
+def test_force_control_without_adhesion_comes_off_at_zero():
     """Without adhesion no equilibrium carries tension: a force path into tension comes off at a
     force of zero (within -adh_pulloff_rtol of the step's forces) and ends; the bisection must end
     although the pull-off force is 0 (run with a time limit, so that a hang fails)."""
-    r = subprocess.run([os.path.join(root, "build", "adhbem"), "-adh_n", "16", "-adh_control", "force",
+    r = subprocess.run([EXE, "-adh_n", "16", "-adh_control", "force",
                         "-adh_path", "0.01,-0.01", "-adh_steps", "3", "-adh_monitor"],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]

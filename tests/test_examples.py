@@ -7,9 +7,9 @@ import subprocess
 import pytest
 
 from adhbem import PETSc
+from adhbem_build import EXE
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
 EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "examples", "*.opts")))
 
 

@@ -16,6 +16,7 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from adhbem_build import EXE
 
 N, L, R, E = 32, 1.0, 1.0, 1.0
 H = L / N
@@ -270,12 +271,11 @@ def test_bad_topography_vec_raises():
 
 # ---- the executable --------------------------------------------------------------------------
 
-def run_exe(root, args, cwd):
-    """build/adhbem on 2 ranks, in a clean MPI environment (this process may be a singleton)."""
+def run_exe(args, cwd):
+    """The executable on 2 ranks, in a clean MPI environment (this process may be a singleton)."""
     env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_"))}
     env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-    exe = os.path.join(root, "build", "adhbem")
-    return subprocess.run(["mpirun", "--oversubscribe", "-n", "2", exe] + args, cwd=cwd, env=env,
+    return subprocess.run(["mpirun", "--oversubscribe", "-n", "2", EXE] + args, cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=120)
 
 
@@ -285,12 +285,12 @@ def exe_args(extra):
 
 
 @pytest.mark.parametrize("case", ["negative", "shape", "nan", "missing", "dataset"])
-def test_executable_refuses_bad_gamma_field(root, tmp, case):
+def test_executable_refuses_bad_gamma_field(tmp, case):
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own mpirun")
     path, extra = bad_file(tmp, case)
     args = ["-adh_gamma_field", path] + [a for k, v in extra.items() for a in (f"-adh_{k}", v)]
-    r = run_exe(root, exe_args(args), tmp)
+    r = run_exe(exe_args(args), tmp)
     left = sorted(f for f in os.listdir(tmp) if f.startswith("x."))
     print(f"\n{case}: exit {r.returncode}; " + " | ".join(l for l in r.stderr.splitlines() if "-adh_gamma_field:" in l)[:300])
     assert r.returncode != 0
@@ -298,23 +298,23 @@ def test_executable_refuses_bad_gamma_field(root, tmp, case):
     assert left == []
 
 
-def test_executable_refuses_bad_topography(root, tmp):
+def test_executable_refuses_bad_topography(tmp):
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own mpirun")
     path = write_field(os.path.join(tmp, "z.npy"), height_map()[:-1])
-    r = run_exe(root, exe_args(["-adh_topography", path]), tmp)
+    r = run_exe(exe_args(["-adh_topography", path]), tmp)
     assert r.returncode != 0
     assert "-adh_topography: " in r.stderr and "z.npy" in r.stderr and "shape" in r.stderr
     assert sorted(f for f in os.listdir(tmp) if f.startswith("x.")) == []
 
 
-def test_executable_with_good_files(root, tmp):
+def test_executable_with_good_files(tmp):
     """The same files that fail above, when right, give a complete result."""
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own mpirun")
     z = write_field(os.path.join(tmp, "z.h5"), height_map(), dataset="z")
     g = write_field(os.path.join(tmp, "g.npy"), np.full((N, N), GAMMA))
-    r = run_exe(root, exe_args(["-adh_topography", z, "-adh_topography_dataset", "z", "-adh_gamma_field", g]), tmp)
+    r = run_exe(exe_args(["-adh_topography", z, "-adh_topography_dataset", "z", "-adh_gamma_field", g]), tmp)
     assert r.returncode == 0, r.stderr
     assert sorted(f for f in os.listdir(tmp) if f.startswith("x.")) == ["x.csv", "x.h5"]
 
@@ -356,15 +356,14 @@ def _min():
     return MPI.MIN
 
 
-def test_a_path_that_never_touches_says_so(root, tmp_path):
+def test_a_path_that_never_touches_says_so(tmp_path):
     """A path that stays above the surface runs (every state empty) and says so."""
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own process")
-    exe = os.path.join(root, "build", "adhbem")
-    r = subprocess.run([exe, "-adh_n", "32", "-adh_path", "-0.02,-0.01", "-adh_steps", "2",
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_path", "-0.02,-0.01", "-adh_steps", "2",
                         "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0
     assert "never touches the surface" in r.stdout and "first touch at d = 0" in r.stdout
-    r = subprocess.run([exe, "-adh_n", "32", "-adh_path", "-0.02,0.01", "-adh_steps", "2"],
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_path", "-0.02,0.01", "-adh_steps", "2"],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and "never touches" not in r.stdout

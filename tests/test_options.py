@@ -9,9 +9,8 @@ import pytest
 
 import adhbem
 from adhbem import PETSc, _adhbem
+from adhbem_build import EXE
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
 
 
 def serial_only():

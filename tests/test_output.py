@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 
 from adhbem import PETSc
+from adhbem_build import EXE
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
 N = 32
 RUN = [EXE, "-adh_n", str(N), "-adh_gamma", "1e-3", "-adh_path", "0.01,-0.004", "-adh_steps", "5"]
 

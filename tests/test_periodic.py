@@ -20,6 +20,7 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from adhbem_build import EXE
 from common import _max, _min, gamma_for, jkr_scales, rank0, say  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -115,7 +116,7 @@ def test_westergaard_wavy_surface(fraction):
         assert err[-1] < 5e-6
 
 
-def test_full_contact(root, tmp_path):
+def test_full_contact(tmp_path):
     """Force control beyond full contact (pbar = 1.5 p*): every point in contact, d = mean(h) = D,
     and the pressure is the exact discrete p_i = pbar + p* cos(2 pi x_i/lam). Displacement control
     up to d >= D is refused before any work (Python: PETSc.Error; executable: non-zero exit, the
@@ -144,10 +145,9 @@ def test_full_contact(root, tmp_path):
     # Refused before the solve, at the first d >= mean(h) = D (0.01025), naming mean(h) = D.
     assert "presses the periodic cell into full contact" in msg and "mean(h) = 0.01)" in msg
 
-    exe = os.path.join(root, "build", "adhbem")
     out = tmp_path / "full.h5"
     # A sphere on a periodic 16 x 16 cell: mean(h) ~ 0.08, below the path's end.
-    r = subprocess.run([exe, "-adh_n", "16", "-adh_boundary", "periodic", "-adh_path", "0.01,0.2",
+    r = subprocess.run([EXE, "-adh_n", "16", "-adh_boundary", "periodic", "-adh_path", "0.01,0.2",
                         "-adh_steps", "4", "-adh_output", str(out)], capture_output=True, text=True, timeout=60)
     msg = r.stdout + r.stderr
     lines = [ln for ln in msg.splitlines() if "full contact" in ln and "-adh_control force" in ln]
@@ -205,9 +205,7 @@ def test_certified_attach_same_sets(tmp_path):
     it fires, and every state has the same contact set (mask), the same number of set updates and
     the same force as with -adh_certify 0, with fewer KSP iterations."""
     import h5py
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    exe = os.path.join(root, "build", "adhbem")
-    base = [exe, "-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_hurst", "0.8",
+    base = [EXE, "-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_hurst", "0.8",
             "-adh_rms_slope", "0.1", "-adh_seed", "3", "-adh_boundary", "periodic", "-adh_gamma", "0.004",
             "-adh_start", "adhesive", "-adh_attach", "reach", "-adh_path", "0,0.6,-0.4", "-adh_steps", "8",
             "-adh_fields", "contact"]

@@ -1,7 +1,6 @@
 """adhbem.load (the results file as NumPy arrays, fields read lazily) and python3 -m adhbem.plot
 (curves against the analytic solution where there is one, area against force, contact maps),
 on the output of every indenter and both boundaries."""
-import os
 import subprocess
 import sys
 
@@ -11,9 +10,9 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem.plot import analytic
+from adhbem_build import EXE
+from common import python_env
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-EXE = os.path.join(ROOT, "build", "adhbem")
 
 CASES = {
     "sphere": ["-adh_indenter", "sphere", "-adh_gamma", "1e-3", "-adh_path", "0.01,-0.004"],
@@ -43,8 +42,7 @@ def run(tmp_path, name, args, fields=True):
 def test_plot_every_indenter_and_boundary(tmp_path, name):
     serial_only()
     out = run(tmp_path, name, CASES[name])
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
-    r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(out)], capture_output=True, text=True, env=env)
+    r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(out)], capture_output=True, text=True, env=python_env())
     assert r.returncode == 0, r.stderr[-2000:]
     png = out.with_suffix(".png")
     assert r.stdout.strip() == str(png) and png.stat().st_size > 10000
@@ -81,6 +79,5 @@ def test_load_gives_the_curve_and_the_fields(tmp_path):
 
 def test_plot_of_a_missing_file_says_so(tmp_path):
     serial_only()
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
-    r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(tmp_path / "none.h5")], capture_output=True, text=True, env=env)
+    r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(tmp_path / "none.h5")], capture_output=True, text=True, env=python_env())
     assert r.returncode == 1 and "none.h5" in r.stderr and "Traceback" not in r.stderr

@@ -14,10 +14,10 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
-from common import say  # noqa: E402
+from adhbem_build import EXE
+from common import python_env, say  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "adhbem")
 
 # a small periodic cell with adhesion that matters: grid spacing 1, E* = 1
 SURFACE = dict(hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7)
@@ -128,8 +128,8 @@ def test_run_rough_job_on_a_small_grid(tmp_path):
     """The ./run rough job end to end on a 64 x 64 cell: its table, plot and files."""
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own mpirun")
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1", PYTHONPATH=os.path.join(ROOT, "python"))
+    env = python_env(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                     OMPI_MCA_rmaps_base_oversubscribe="1")
     r = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "rough.py"), "--n", "64", "--steps", "4",
                         "--results", str(tmp_path)], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr[-2000:]

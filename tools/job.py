@@ -1,7 +1,8 @@
 """The main jobs of ./run: the paper's JKR pull-off and the Kendall flat punch.
 
-Runs build/adhbem under mpirun, writes results/NAME.h5, .csv and .png, and prints the numbers
-next to the analytic ones (DESIGN.md section 5). Run through ./run jkr or ./run punch.
+Runs the adhbem executable (build/adhbem; build64/adhbem with ADHBEM_INDICES=64) under mpirun,
+writes results/NAME.h5, .csv and .png, and prints the numbers next to the analytic ones
+(DESIGN.md section 5). Run through ./run jkr or ./run punch.
 """
 import argparse
 import math
@@ -15,6 +16,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # adhbem (petsc4py) is imported only after mpirun has run: an MPI process that has started
 # MPI cannot launch mpirun.
 sys.path.insert(0, os.path.join(ROOT, "python"))
+from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI)
 
 
 def jkr_theory(gamma, R, E):
@@ -47,7 +49,7 @@ def run_adhbem(options, output, np_ranks, extra=()):
     args = []
     for k, v in options.items():
         args += [f"-adh_{k}", ",".join(repr(x) for x in v) if isinstance(v, list) else str(v)]
-    cmd = ["mpirun", "--oversubscribe", "-n", str(np_ranks), os.path.join(ROOT, "build", "adhbem"),
+    cmd = ["mpirun", "--oversubscribe", "-n", str(np_ranks), EXE,
            *args, "-adh_output", output, "-adh_fields", "pressure,contact", *extra]
     subprocess.run(cmd, check=True)
     import adhbem

@@ -389,6 +389,11 @@ static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_adhbem", "adhbem C 
 
 PyMODINIT_FUNC PyInit__adhbem(void)
 {
+  PyObject *m;
+
   if (import_petsc4py() < 0) return NULL;
-  return PyModule_Create(&module);
+  m = PyModule_Create(&module);
+  /* The package compares it with petsc4py's PetscInt: both must come from the same PETSc. */
+  if (m && PyModule_AddIntConstant(m, "petsc_int_size", (long)sizeof(PetscInt)) < 0) Py_CLEAR(m);
+  return m;
 }

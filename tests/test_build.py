@@ -1,0 +1,55 @@
+"""The build the suite runs against (python/adhbem_build.py: build/, or build64/ with
+ADHBEM_INDICES=64): it is the one asked for, and a Python whose petsc4py is the other PETSc's
+(32- against 64-bit indices) is refused at import with a message instead of crashing."""
+import os
+import subprocess
+import sys
+
+import petsc4py
+import pytest
+
+from adhbem import PETSc, _adhbem
+from adhbem_build import BUILD
+from common import python_env
+
+INDEX_BITS = 8 * PETSc.IntType().itemsize
+
+
+def serial_only():
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("starts its own process")
+
+
+def test_the_build_asked_for():
+    asked = os.environ.get("ADHBEM_INDICES")
+    if not asked:
+        pytest.skip("not run through ./run, which sets ADHBEM_INDICES")
+    assert 8 * _adhbem.petsc_int_size == INDEX_BITS == int(asked)
+
+
+def with_the_other_petsc4py(env):
+    """env with PYTHONPATH changed so that petsc4py is the other PETSc's, or skip."""
+    path = env["PYTHONPATH"].split(os.pathsep)
+    if INDEX_BITS == 32:
+        r = subprocess.run(["pkg-config", "--variable=prefix", "PETSc64"], capture_output=True, text=True)
+        dist = os.path.join(r.stdout.strip(), "lib", "python3", "dist-packages")
+        if r.returncode or not os.path.isdir(os.path.join(dist, "petsc4py")):
+            pytest.skip("the 64-bit PETSc's petsc4py (python3-petsc4py-64-real) is not installed")
+        path.insert(0, dist)
+    else:
+        # ./run put this petsc4py first on PYTHONPATH; without it Debian's default one is found.
+        ours = os.path.realpath(os.path.dirname(os.path.dirname(petsc4py.__file__)))
+        path = [p for p in path if os.path.realpath(p) != ours]
+    return dict(env, PYTHONPATH=os.pathsep.join(path))
+
+
+def test_import_with_the_other_petsc4py_says_so():
+    serial_only()
+    other = 64 if INDEX_BITS == 32 else 32
+    r = subprocess.run([sys.executable, "-c", "import adhbem"], capture_output=True, text=True,
+                       env=with_the_other_petsc4py(python_env()), timeout=60)
+    if "No module named 'petsc4py'" in r.stderr:
+        pytest.skip(f"no {other}-bit petsc4py is installed")
+    assert r.returncode == 1, r.stderr[-2000:]
+    assert f"in {BUILD} is built against a PETSc with {INDEX_BITS}-bit indices, but petsc4py" in r.stderr, r.stderr[-2000:]
+    assert f"PETSc with {other}-bit indices" in r.stderr and "ADHBEM_INDICES" in r.stderr

@@ -318,13 +318,15 @@ static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
   PetscFunctionReturn(0);
 }
 
-/* The 2-norm of one row of the circulant behind the multiplier, by Parseval from the half
-   spectrum (modes kx and n1-kx, ky and n0-ky share a value). Every row of K, and every part of
-   one, is a part of such a row (free: the padded circulant holds every offset of the grid). */
-static PetscErrorCode ComputeRowNorm(Compliance *c)
+/* The diagonal and the 2-norm of one row of the circulant behind the multiplier (translation
+   invariance makes them one number each), from the half spectrum (modes kx and n1-kx, ky and
+   n0-ky share a value): the diagonal is the mean of the symbol, the row norm by Parseval. Every
+   row of K, and every part of one, is a part of such a row (free: the padded circulant holds
+   every offset of the grid). No grid vector, no multiply. */
+static PetscErrorCode ComputeRowStatistics(Compliance *c)
 {
   ptrdiff_t a, k0;
-  PetscReal sum = 0.0;
+  PetscReal sum[2] = {0.0, 0.0};
 
   PetscFunctionBegin;
   for (a = 0; a < c->t->local_n1; a++) {
@@ -332,11 +334,13 @@ static PetscErrorCode ComputeRowNorm(Compliance *c)
     const PetscReal wx = (kx == 0 || 2 * kx == c->t->n1) ? 1.0 : 2.0;
     for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
       const PetscReal wy = (k0 == 0 || 2 * k0 == c->t->n0) ? 1.0 : 2.0, m = c->multiplier[a * c->nhalf + k0];
-      sum += wx * wy * m * m;
+      sum[0] += wx * wy * m;
+      sum[1] += wx * wy * m * m;
     }
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, c->comm));
-  c->rownorm = PetscSqrtReal(sum * (PetscReal)c->t->n0 * (PetscReal)c->t->n1);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2, MPIU_REAL, MPIU_SUM, c->comm));
+  c->diagonal = sum[0];
+  c->rownorm  = PetscSqrtReal(sum[1] * (PetscReal)c->t->n0 * (PetscReal)c->t->n1);
   PetscFunctionReturn(0);
 }
 
@@ -439,7 +443,6 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscReal   timelimit = -1.0;
   PetscBool   tlset;
   ptrdiff_t   nspec;
-  Vec         x, e;
 
   PetscFunctionBegin;
   PetscCall(AdhInitializePackage());
@@ -465,10 +468,9 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
   else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
   else PetscCall(ComputeStiffnessMultiplier(c));
-  PetscCall(ComputeRowNorm(c));
+  PetscCall(ComputeRowStatistics(c));
 
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
-  PetscCall(AdhGridCreateVector(grid, &x));
   PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT, (void (*)(void))MatMult_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Compliance));
@@ -481,26 +483,6 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   if (kind != KIND_PERIODIC) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetUp(*K));
 
-  /* Translation invariance makes the diagonal one number: the response of element 0 to itself. */
-  PetscCall(VecDuplicate(x, &e));
-  PetscCall(VecSetValue(e, 0, 1.0, INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(e));
-  PetscCall(VecAssemblyEnd(e));
-  PetscCall(MatMult(*K, e, x));
-  {
-    PetscScalar d0 = 0.0;
-    if (ys == 0) {
-      const PetscScalar *xa;
-      PetscCall(VecGetArrayRead(x, &xa));
-      d0 = xa[0];
-      PetscCall(VecRestoreArrayRead(x, &xa));
-    }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d0, 1, MPIU_SCALAR, MPIU_SUM, c->comm));
-    c->diagonal = PetscRealPart(d0);
-  }
-  c->nmult = 0;
-  PetscCall(VecDestroy(&e));
-  PetscCall(VecDestroy(&x));
   PetscFunctionReturn(0);
 }
 

@@ -2,9 +2,11 @@
    estimate of the memory, so that a grid that cannot fit stops with one clear message instead of
    an allocation failure deep inside FFTW or PETSc (or the kernel's OOM killer).
 
-   The memory model is per grid point, measured with -memory_view (1024^2, one rank): a periodic
-   cell holds h, p, g (24 B), the FFT array (8), the half-spectrum multipliers (4), the DMDA maps
-   (12) and the CG vectors on the contact set (up to 50 where everything touches): 100 B. A free
+   The memory model is per grid point, measured with -memory_view (1024^2 and 2048^2): a periodic
+   cell holds h, p, g (24 B), the FFT array (8), the half-spectrum multipliers (4), the contact
+   flags (2), FFTW-MPI's transpose buffers on more than one rank (about 16), the CG vectors on the
+   contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
+   (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
    bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u, G and three ghosted
    vectors (40). Each rank also holds about 50 MB of MPI, PETSc and FFTW. */

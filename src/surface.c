@@ -178,7 +178,9 @@ static void ColumnSums(AdhGrid grid, ptrdiff_t nkx, ptrdiff_t kx0, const fftw_co
   }
 }
 
-PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
+/* The heights in FFTW's layout: *rows rows of Nx values from row *first on, packed at the start
+   of *heights (fftw_free it); the realised statistics go into s. */
+static PetscErrorCode GenerateRows(AdhGrid grid, AdhSurface *s, double **heights, PetscInt *first, PetscInt *rows)
 {
   PetscInt     Nx, Ny, n1c, N, modes = 0, k, r;
   PetscReal    lr, lc, *sums, tot[2], scale, zmin = PETSC_MAX_REAL, zmax = PETSC_MIN_REAL;
@@ -187,9 +189,6 @@ PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
   fftw_complex *spec;
   fftw_plan    column, transpose, row;
   char        *wisdom;
-  Vec          zf;
-  IS           is;
-  VecScatter   toGrid;
   PetscBool    ok;
 
   PetscFunctionBegin;
@@ -197,8 +196,6 @@ PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
   PetscCall(AdhGridSetUp(grid));
   PetscCall(Resolve(grid, s, &lr, &lc));
   Nx = grid->Nx; Ny = grid->Ny; n1c = Nx / 2 + 1; N = Nx * Ny;
-  PetscCall(VecGetSize(z, &k));
-  PetscCheck(k == N, grid->comm, PETSC_ERR_ARG_SIZ, "The height Vec has %" PetscInt_FMT " entries; the grid has %" PetscInt_FMT, k, N);
 
   /* One array: kx columns of Ny complex (FFTW's transposed layout), then after the transpose
      y rows of n1c complex, in which each row's c2r transform leaves its Nx heights. */
@@ -282,15 +279,67 @@ PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
   s->used_cutoff_wavelength  = lc;
   s->generated               = PETSC_TRUE;
 
-  /* FFTW's rows are not the grid's balanced rows: one scatter moves them (same global order). */
-  PetscCall(VecCreateMPIWithArray(grid->comm, 1, (PetscInt)ny * Nx, N, data, &zf));
-  PetscCall(ISCreateStride(grid->comm, (PetscInt)ny * Nx, (PetscInt)y0 * Nx, 1, &is));
-  PetscCall(VecScatterCreate(zf, is, z, is, &toGrid));
-  PetscCall(VecScatterBegin(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterDestroy(&toGrid));
-  PetscCall(ISDestroy(&is));
-  PetscCall(VecDestroy(&zf));
+  *heights = data;
+  *first   = (PetscInt)y0;
+  *rows    = (PetscInt)ny;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
+{
+  double  *data;
+  PetscInt y0, ny, ys, ym, n, N = grid->Nx * grid->Ny;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(AdhGridSetUp(grid));
+  PetscCall(VecGetSize(z, &n));
+  PetscCheck(n == N, grid->comm, PETSC_ERR_ARG_SIZ, "The height Vec has %" PetscInt_FMT " entries; the grid has %" PetscInt_FMT, n, N);
+  PetscCall(GenerateRows(grid, s, &data, &y0, &ny));
+  /* Where FFTW's rows are the grid's (the usual case: the grid splits its rows as FFTW does) they
+     are copied; otherwise one scatter moves them (same global order). */
+  PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
+  {
+    PetscBool same = (PetscBool)(ys == y0 && ym == ny);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, grid->comm));
+    if (same) {
+      PetscScalar *za;
+      PetscCall(VecGetArrayWrite(z, &za));
+      PetscCall(PetscArraycpy(za, data, ym * grid->Nx));
+      PetscCall(VecRestoreArrayWrite(z, &za));
+    } else {
+      Vec        zf;
+      IS         is;
+      VecScatter toGrid;
+      PetscCall(VecCreateMPIWithArray(grid->comm, 1, ny * grid->Nx, N, data, &zf));
+      PetscCall(ISCreateStride(grid->comm, ny * grid->Nx, y0 * grid->Nx, 1, &is));
+      PetscCall(VecScatterCreate(zf, is, z, is, &toGrid));
+      PetscCall(VecScatterBegin(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterEnd(toGrid, zf, z, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterDestroy(&toGrid));
+      PetscCall(ISDestroy(&is));
+      PetscCall(VecDestroy(&zf));
+    }
+  }
+  fftw_free(data);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSurfaceWriteHeights(AdhGrid grid, AdhSurface *s, PetscViewer viewer, const char name[])
+{
+  double  *data;
+  PetscInt y0, ny;
+  Vec      z;
+
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(AdhGridSetUp(grid));
+  PetscCall(GenerateRows(grid, s, &data, &y0, &ny));
+  /* the rows where FFTW made them: the viewer writes every rank's rows at their global place */
+  PetscCall(VecCreateMPIWithArray(grid->comm, grid->Nx, ny * grid->Nx, grid->Nx * grid->Ny, data, &z));
+  PetscCall(PetscObjectSetName((PetscObject)z, name));
+  PetscCall(VecView(z, viewer));
+  PetscCall(VecDestroy(&z));
   fftw_free(data);
   PetscFunctionReturn(0);
 }

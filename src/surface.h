@@ -33,5 +33,8 @@ PETSC_EXTERN PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm, const char prefix
    the defaults, checks the ranges, scales to the requested rms exactly and records the realised
    statistics in *s. Bit-identical for any number of ranks. Cost O(N log N): one inverse FFT. */
 PETSC_EXTERN PetscErrorCode AdhSurfaceGenerate(AdhGrid, AdhSurface *, Vec z);
+/* The same heights written to a viewer as the (Ny, Nx) dataset `name`, from the generator's own
+   array (no grid vector). */
+PETSC_EXTERN PetscErrorCode AdhSurfaceWriteHeights(AdhGrid, AdhSurface *, PetscViewer, const char name[]);
 PETSC_EXTERN PetscErrorCode AdhSurfaceView(const AdhSurface *, PetscViewer);
 #endif

@@ -141,7 +141,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsString("-adh_restart", "Go on from this checkpoint (the options that shape the problem must be the checkpoint's)", "AdhSolver", s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
-  PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once every point's fate is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));

@@ -1,5 +1,6 @@
 /* adhbem: run an indentation path of an adhesive contact and write the curve.
    mpirun -n P build/adhbem [options] (or -options_file job.opts); -help lists the options. */
+#include <stdlib.h>
 #include "adhbem.h"
 
 static const char help[] = "adhbem: adhesive normal contact of elastic solids with the boundary element method\n"
@@ -73,12 +74,25 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscFunctionReturn(0);
 }
 
+/* Open MPI's "sm" shared-file-pointer component, which its MPI-IO opens along with every file
+   HDF5 writes, guards each file with a named semaphore keyed on the file's base name alone. A job
+   killed while it held one (a batch job's SIGKILL during a write) leaves it locked in /dev/shm,
+   and every later run that writes a file of that name waits on it forever. adhbem never uses
+   shared file pointers, so it asks for the others (which lock with fcntl) unless the user chose. */
+static void AvoidStaleSemaphores(void)
+{
+#if defined(OPEN_MPI)
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
+#endif
+}
+
 int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscBool      traceback = PETSC_FALSE;
   AdhSolver      solver;
 
+  AvoidStaleSemaphores();
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));

@@ -5,12 +5,14 @@ checkpoint to the curve of the uninterrupted run: bit for bit on the same number
 not fit the run, or are damaged, are refused naming the option."""
 import os
 import signal
+import sys
 import subprocess
 
 import numpy as np
 import pytest
 
 from adhbem import PETSc
+import adhbem_build
 from adhbem_build import EXE
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
@@ -149,3 +151,59 @@ def test_damaged_checkpoints_are_refused(tmp_path, checkpoint):
         r = subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_restart", str(bad)],
                            capture_output=True, text=True, env=ENV)
         assert r.returncode != 0 and says in r.stderr and "-adh_restart" in r.stderr, r.stderr
+
+
+class LockedSemaphores:
+    """Named POSIX semaphores left locked (value 0), as Open MPI's "sm" shared-file-pointer
+    component leaves the one it keys on a file's base name when a job is killed during a write."""
+
+    def __init__(self, names):
+        import ctypes
+        self.libc = ctypes.CDLL(None, use_errno=True)
+        self.libc.sem_open.restype = ctypes.c_void_p
+        self.libc.sem_open.argtypes = [ctypes.c_char_p, ctypes.c_int, ctypes.c_uint, ctypes.c_uint]
+        self.names = [b"/OMPIO_" + n.encode() for n in names]
+        for n in self.names:
+            self.libc.sem_unlink(n)
+            assert self.libc.sem_open(n, os.O_CREAT | os.O_EXCL, 0o644, 0), n
+
+    def remove(self):
+        for n in self.names:
+            self.libc.sem_unlink(n)
+
+
+def run_to_end(cmd, cwd, env=ENV):
+    """Runs cmd in a session of its own; a run still going after 120 s is killed with its whole
+    process group (a hung MPI job) and fails the test."""
+    p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=120)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        pytest.fail(f"{cmd[0]} hung writing its files")
+    assert p.returncode == 0, err[-2000:]
+
+
+def test_a_write_lock_left_by_a_killed_job_does_not_hang(tmp_path):
+    """A batch job killed while writing must not hang the next job that writes files of the same
+    names: adhbem and its Python layer keep Open MPI from using the semaphores above."""
+    serial_only()
+    import uuid
+    name = uuid.uuid4().hex[:12]
+    files = [f"{name}{k}.h5" for k in ("a", "b", "c")]
+    locks = LockedSemaphores(f for file in files for f in (file, file + ".part"))
+    try:
+        short = [*OPTS, "-adh_path", "0,0.6", "-adh_steps", "2"]
+        run_to_end([EXE, *short, "-adh_output", files[0], "-adh_checkpoint", "ck" + files[0]], tmp_path)
+        run_to_end(["mpirun", "-n", "2", EXE, *short, "-adh_output", files[1]], tmp_path)
+        code = ("import adhbem; s = adhbem.Solver(n=32, size=32, indenter='rough', boundary='periodic', gamma=0.004, "
+                f"path=[0, 0.6], steps=2); s.solve_path(); s.write({files[2]!r})")
+        python = os.path.dirname(os.path.abspath(adhbem_build.__file__))
+        run_to_end([sys.executable, "-c", code], tmp_path,
+                   dict(ENV, PYTHONPATH=os.pathsep.join([python, os.environ.get("PYTHONPATH", "")])))
+    finally:
+        locks.remove()
+    for f in files:
+        assert (tmp_path / f).exists() and not (tmp_path / (f + ".part")).exists()

@@ -12,6 +12,11 @@ import sys
 import adhbem_build
 import petsc4py
 
+# Open MPI's "sm" shared-file-pointer component locks every file HDF5 opens with a semaphore named
+# after the file's base name; one left locked by a killed job hangs every later run writing a file
+# of that name. adhbem never uses shared file pointers (this only helps if MPI is not started yet).
+os.environ.setdefault("OMPI_MCA_sharedfp", "^sm")
+
 # Let PETSc see the command line (options such as -adh_fftw_planner) unless the user already
 # initialised petsc4py.
 if "petsc4py.PETSc" not in sys.modules:

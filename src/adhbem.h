@@ -8,7 +8,7 @@
 #include <petscksp.h>
 
 PETSC_EXTERN PetscClassId ADH_CLASSID;
-PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate;
+PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;
 
 PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
 
@@ -164,6 +164,15 @@ typedef const char *AdhCriterionType;
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);
+/* Contact-set predictor, a registered type: "polonsky-keer" (Polonsky & Keer's constrained
+   conjugate gradient guesses the set of a force-controlled step without adhesion, which the
+   set-update loop then certifies) or "none". It changes the cost, not the answer. */
+typedef const char *AdhPredictorType;
+#define ADHPREDICTORNONE         "none"
+#define ADHPREDICTORPOLONSKYKEER "polonsky-keer"
+PETSC_EXTERN PetscErrorCode AdhPredictorRegister(const char[], PetscErrorCode (*)(AdhSolver));
+PETSC_EXTERN PetscErrorCode AdhSolverSetPredictorType(AdhSolver, AdhPredictorType);
+PETSC_EXTERN PetscErrorCode AdhSolverGetPredictorType(AdhSolver, AdhPredictorType *);
 /* The names of adhbem's own options, without the leading '-' and the prefix (adh_gamma, ...). */
 PETSC_EXTERN PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names);
 /* The memory the run needs, estimated from the grid, the boundary and the criterion (bytes, all

@@ -3,7 +3,7 @@
 #include "solverimpl.h"
 
 PetscClassId  ADH_CLASSID;
-PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate;
+PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;
 
 static PetscBool AdhPackageInitialized = PETSC_FALSE;
 
@@ -13,6 +13,7 @@ static PetscErrorCode AdhFinalizePackage(void)
   fftw_mpi_cleanup();
   PetscCall(AdhControlDestroyList_Private());
   PetscCall(AdhCriterionDestroyList_Private());
+  PetscCall(AdhPredictorDestroyList_Private());
   AdhPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -29,6 +30,7 @@ PetscErrorCode AdhInitializePackage(void)
   PetscCall(PetscLogEventRegister("AdhComplMult", ADH_CLASSID, &ADH_ComplianceMult));
   PetscCall(PetscLogEventRegister("AdhStepSolve", ADH_CLASSID, &ADH_Solve));
   PetscCall(PetscLogEventRegister("AdhSetUpdate", ADH_CLASSID, &ADH_SetUpdate));
+  PetscCall(PetscLogEventRegister("AdhPredict", ADH_CLASSID, &ADH_Predict));
   PetscCall(PetscRegisterFinalize(AdhFinalizePackage));
   PetscFunctionReturn(0);
 }

@@ -42,6 +42,9 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->grid->fftw_timelimit = 0.01; /* free boundary: many windows to plan, few whole-grid multiplies */
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
   PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONPOHRTPOPOV));
+  s->predictor_rtol   = 1e-8;
+  s->predictor_max_it = 10000;
+  PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORPOLONSKYKEER));
   *solver = s;
   PetscFunctionReturn(0);
 }
@@ -92,8 +95,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscInt          n = 256;
   PetscReal         path[256];
   PetscBool         set, certify = s->certify;
-  char              control[64], criterion[64];
-  PetscFunctionList controls, criteria;
+  char              control[64], criterion[64], predictor[64];
+  PetscFunctionList controls, criteria, predictors;
   PetscBool         monitor_set;
 
   PetscFunctionBegin;
@@ -127,6 +130,11 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: penetration (g < 0) or reach (g < Sigma K_00)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
+  PetscCall(AdhPredictorGetList_Private(&predictors));
+  PetscCall(PetscOptionsFList("-adh_predictor", "Force control without adhesion: guess the contact set with Polonsky-Keer's constrained CG (polonsky-keer) before the set-update loop certifies it, or not (none); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
+  if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
+  PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "AdhSolver", s->predictor_rtol, &s->predictor_rtol, NULL));
+  PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "AdhSolver", s->predictor_max_it, &s->predictor_max_it, NULL));
   PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem output, monitoring and long runs", "AdhSolver");

@@ -82,6 +82,11 @@ struct _n_AdhSolver {
   AdhSavedState previous;       /* force control: the state before the current step */
   PetscBool     pulled_off;     /* the last step ended in pull-off */
 
+  /* contact-set predictor (predictor.c) */
+  char      predictor_type[64];
+  PetscErrorCode (*predict)(AdhSolver, PetscReal F); /* NULL: none */
+  PetscReal predictor_rtol;
+  PetscInt  predictor_max_it, predictor_its;
   /* detachment criterion */
   char            criterion_type[64];
   AdhCriterionOps crops;
@@ -183,6 +188,9 @@ PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal
 PETSC_INTERN PetscErrorCode AdhSolverStep_Displacement(AdhSolver, PetscReal);
 PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
 PETSC_INTERN PetscErrorCode AdhControlRegisterAll_Private(void);
+PETSC_INTERN PetscErrorCode AdhPredictorRegisterAll_Private(void);
+PETSC_INTERN PetscErrorCode AdhPredictorDestroyList_Private(void);
+PETSC_INTERN PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhControlGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);

@@ -1,0 +1,244 @@
+/* Contact-set predictor, a registered type (-adh_predictor): a fast first guess of the contact set
+   and pressure of a force-controlled step without adhesion, handed to the set-update loop
+   (control.c), which then certifies it as it certifies any set. The answer is the loop's: without
+   adhesion the contact problem (p >= 0 on the set, g >= 0 off it, force F) has one solution,
+   and the loop started from a good guess only has fewer sets to go through.
+
+   none:          the loop starts from the previous state's set.
+   polonsky-keer: Polonsky & Keer's conjugate gradient with the force constraint (Wear 1999):
+                  one compliance application per iteration where no point leaves or joins the
+                  set, two where some do. It stops when an iteration changes the pressure by
+                  less than -adh_predictor_rtol of its 1-norm, or after as many iterations as
+                  -adh_predictor_max_it allows (the loop goes on from where it got). */
+#include "solverimpl.h"
+
+static PetscFunctionList AdhPredictorList       = NULL;
+static PetscBool         AdhPredictorRegistered = PETSC_FALSE;
+
+PetscErrorCode AdhPredictorRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
+{
+  PetscFunctionBegin;
+  PetscCall(AdhInitializePackage());
+  PetscCall(PetscFunctionListAdd(&AdhPredictorList, name, create));
+  PetscFunctionReturn(0);
+}
+
+/* ---- none ---- */
+
+static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
+{
+  PetscFunctionBegin;
+  s->predict = NULL;
+  PetscFunctionReturn(0);
+}
+
+/* ---- polonsky-keer ---- */
+
+/* The pressure p >= 0 carrying F with the gap g = K p + h - d >= 0 closed where p > 0, on the whole
+   grid; the contact set is p > 0. s->p is the start (the previous state's pressure, rescaled) and
+   the result; s->d is set to the indentation of the result.
+
+   The displacement u = K p follows p along the search direction (u -= tau K t) at no cost. Where
+   an iteration also moves points off or onto the set, the change c it makes beyond that step is
+   kept aside (u = K (p - c)) and applied with one compliance application once it amounts to more
+   than a thousandth of the pressure, and always before the iteration may stop. */
+static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
+{
+  const PetscReal A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
+  Vec             p = s->p, u, g, t, r, c;
+  PetscScalar     sum;
+  PetscReal       Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, pending = 0.0;
+  PetscInt        it, n, k, updates = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(ADH_Predict, 0, 0, 0, 0));
+  PetscCall(VecDuplicate(p, &u));
+  PetscCall(VecDuplicate(p, &g));
+  PetscCall(VecDuplicate(p, &t));
+  PetscCall(VecDuplicate(p, &r));
+  PetscCall(VecDuplicate(p, &c));
+  PetscCall(VecGetLocalSize(p, &n));
+  /* start from the previous pressure scaled to F, or from a uniform one */
+  PetscCall(VecSum(p, &sum));
+  if (PetscRealPart(sum) > 0) PetscCall(VecScale(p, F / (A * PetscRealPart(sum))));
+  else PetscCall(VecSet(p, F / (A * N)));
+  PetscCall(VecSet(t, 0.0));
+  PetscCall(VecSet(c, 0.0));
+  PetscCall(MatMult(s->K, p, u));
+  for (it = 0; it < s->predictor_max_it; it++) {
+    const PetscScalar *ra;
+    PetscScalar       *pa, *ga, *ta, *ca;
+    PetscReal          loc[4], glob[4], G, beta, tau, scale;
+
+    if (pending > 1e-7 || (change <= s->predictor_rtol && pending > 0)) {
+      PetscCall(MatMult(s->K, p, u));
+      PetscCall(VecSet(c, 0.0));
+      pending = 0.0;
+      updates++;
+    } else if (change <= s->predictor_rtol) break;
+    /* the set p > 0, and the gap relative to its mean there (that mean is the indentation d) */
+    PetscCall(VecWAXPY(g, 1.0, u, s->h));
+    PetscCall(VecGetArray(p, &pa));
+    PetscCall(VecGetArray(g, &ga));
+    loc[0] = loc[1] = 0.0;
+    for (k = 0; k < n; k++)
+      if (PetscRealPart(pa[k]) > 0) {
+        loc[0] += 1;
+        loc[1] += PetscRealPart(ga[k]);
+      }
+    PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, s->comm));
+    nc   = glob[0];
+    gbar = glob[1] / nc;
+    loc[0] = 0.0;
+    for (k = 0; k < n; k++) {
+      ga[k] -= gbar;
+      if (PetscRealPart(pa[k]) > 0) loc[0] += PetscRealPart(ga[k] * ga[k]);
+    }
+    PetscCall(MPIU_Allreduce(loc, &G, 1, MPIU_REAL, MPIU_SUM, s->comm));
+    if (G == 0) break; /* the gap is closed exactly on the set */
+    /* conjugate direction on the set, restarted (delta = 0) after points joined */
+    beta = delta * G / Gold;
+    Gold = G;
+    PetscCall(VecGetArray(t, &ta));
+    for (k = 0; k < n; k++) ta[k] = PetscRealPart(pa[k]) > 0 ? ga[k] + beta * ta[k] : 0.0;
+    PetscCall(VecRestoreArray(t, &ta));
+    PetscCall(VecRestoreArray(g, &ga));
+    PetscCall(VecRestoreArray(p, &pa));
+    /* the step length from the direction's gap change, again relative to its mean on the set */
+    PetscCall(MatMult(s->K, t, r));
+    PetscCall(VecGetArrayRead(r, &ra));
+    PetscCall(VecGetArray(p, &pa));
+    PetscCall(VecGetArray(g, &ga));
+    PetscCall(VecGetArray(t, &ta));
+    loc[0] = loc[1] = loc[2] = loc[3] = 0.0;
+    for (k = 0; k < n; k++)
+      if (PetscRealPart(pa[k]) > 0) {
+        loc[0] += PetscRealPart(ra[k]);
+        loc[1] += PetscRealPart(ta[k]);
+        loc[2] += PetscRealPart(ga[k] * ta[k]);
+        loc[3] += PetscRealPart(ra[k] * ta[k]);
+      }
+    PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPIU_SUM, s->comm));
+    {
+      const PetscReal den = glob[3] - glob[0] / nc * glob[1];
+      if (!(den > 0)) { /* the direction changes nothing any more: converged to rounding */
+        PetscCall(VecRestoreArray(t, &ta));
+        PetscCall(VecRestoreArray(g, &ga));
+        PetscCall(VecRestoreArray(p, &pa));
+        PetscCall(VecRestoreArrayRead(r, &ra));
+        break;
+      }
+      tau = glob[2] / den;
+    }
+    /* p - tau t; points with p < 0 leave, points off the set where the surfaces overlap join */
+    PetscCall(VecGetArray(c, &ca));
+    loc[0] = loc[1] = loc[2] = loc[3] = 0.0;
+    for (k = 0; k < n; k++) {
+      const PetscReal old = PetscRealPart(pa[k]), step = old - tau * PetscRealPart(ta[k]);
+      PetscReal       v = step;
+
+      if (v < 0) v = 0.0;
+      else if (old == 0.0 && PetscRealPart(ga[k]) < 0) {
+        v = -tau * PetscRealPart(ga[k]);
+        loc[2] += 1;
+      }
+      loc[0] += PetscAbsReal(v - old);
+      loc[1] += PetscAbsReal(v - step);
+      ca[k] += v - step;
+      pa[k] = v;
+    }
+    PetscCall(VecRestoreArray(c, &ca));
+    PetscCall(VecRestoreArray(t, &ta));
+    PetscCall(VecRestoreArray(g, &ga));
+    PetscCall(VecRestoreArray(p, &pa));
+    PetscCall(VecRestoreArrayRead(r, &ra));
+    PetscCall(VecAXPY(u, -tau, r));
+    /* the force constraint */
+    PetscCall(VecSum(p, &sum));
+    PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_REAL, MPIU_SUM, s->comm));
+    PetscCheck(PetscRealPart(sum) > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "-adh_predictor polonsky-keer: the pressure vanished on the whole grid");
+    scale = F / (A * PetscRealPart(sum));
+    PetscCall(VecScale(p, scale));
+    PetscCall(VecScale(u, scale));
+    PetscCall(VecScale(c, scale));
+    delta   = glob[2] > 0 ? 0.0 : 1.0;
+    change  = glob[0] * scale * A / F;
+    pending = pending * scale + glob[1] * scale * A / F;
+  }
+  PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
+  s->d = gbar;
+  s->predictor_its += it;
+  /* the set is where the pressure is positive; the unit response vanishes off it, as p does */
+  {
+    const PetscScalar *pa;
+    PetscScalar       *xa = NULL;
+    if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
+    PetscCall(VecGetArrayRead(p, &pa));
+    for (k = 0; k < n; k++) {
+      s->in_set[k] = PetscRealPart(pa[k]) > 0;
+      if (xa && !s->in_set[k]) xa[k] = 0.0;
+    }
+    PetscCall(VecRestoreArrayRead(p, &pa));
+    if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
+  }
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&g));
+  PetscCall(VecDestroy(&t));
+  PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&c));
+  PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
+{
+  PetscFunctionBegin;
+  s->predict = Predict_PolonskyKeer;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhPredictorRegisterAll_Private(void)
+{
+  PetscFunctionBegin;
+  if (AdhPredictorRegistered) PetscFunctionReturn(0);
+  AdhPredictorRegistered = PETSC_TRUE;
+  PetscCall(AdhPredictorRegister(ADHPREDICTORNONE, AdhPredictorCreate_None));
+  PetscCall(AdhPredictorRegister(ADHPREDICTORPOLONSKYKEER, AdhPredictorCreate_PolonskyKeer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhPredictorDestroyList_Private(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListDestroy(&AdhPredictorList));
+  AdhPredictorRegistered = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *list)
+{
+  PetscFunctionBegin;
+  *list = AdhPredictorList;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
+{
+  PetscErrorCode (*create)(AdhSolver);
+
+  PetscFunctionBegin;
+  PetscCall(AdhPredictorRegisterAll_Private());
+  PetscCall(PetscFunctionListFind(AdhPredictorList, type, &create));
+  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (none or polonsky-keer)", type);
+  PetscCall(create(s));
+  PetscCall(PetscStrncpy(s->predictor_type, type, sizeof(s->predictor_type)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetPredictorType(AdhSolver s, AdhPredictorType *type)
+{
+  PetscFunctionBegin;
+  *type = s->predictor_type;
+  PetscFunctionReturn(0);
+}

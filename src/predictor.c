@@ -39,16 +39,19 @@ static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
    the result; s->d is set to the indentation of the result.
 
    The displacement u = K p follows p along the search direction (u -= tau K t) at no cost. Where
-   an iteration also moves points off or onto the set, the change c it makes beyond that step is
-   kept aside (u = K (p - c)) and applied with one compliance application once it amounts to more
-   than a thousandth of the pressure, and always before the iteration may stop. */
+   an iteration also moves points off or onto the set, u misses that change; u is computed anew
+   (one more compliance application) once the changes missed amount to more than 1e-7 of the
+   pressure's 1-norm, and always before the iteration may stop. The loops over the grid are
+   fused, and the force constraint's rescaling of p and u is applied in the next pass over them:
+   at 1024^2 the passes over memory cost as much as the transforms. */
 static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
 {
-  const PetscReal A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
-  Vec             p = s->p, u, g, t, r, c;
-  PetscScalar     sum;
-  PetscReal       Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, pending = 0.0;
-  PetscInt        it, n, k, updates = 0;
+  const PetscReal    A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
+  Vec                p = s->p, u, g, t, r;
+  const PetscScalar *ha, *ra;
+  PetscScalar       *pa, *ua, *ga, *ta, sum;
+  PetscReal          Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, missed = 0.0, scale = 1.0;
+  PetscInt           it, n, k, updates = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_Predict, 0, 0, 0, 0));
@@ -56,36 +59,41 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
   PetscCall(VecDuplicate(p, &g));
   PetscCall(VecDuplicate(p, &t));
   PetscCall(VecDuplicate(p, &r));
-  PetscCall(VecDuplicate(p, &c));
   PetscCall(VecGetLocalSize(p, &n));
   /* start from the previous pressure scaled to F, or from a uniform one */
   PetscCall(VecSum(p, &sum));
   if (PetscRealPart(sum) > 0) PetscCall(VecScale(p, F / (A * PetscRealPart(sum))));
   else PetscCall(VecSet(p, F / (A * N)));
   PetscCall(VecSet(t, 0.0));
-  PetscCall(VecSet(c, 0.0));
   PetscCall(MatMult(s->K, p, u));
   for (it = 0; it < s->predictor_max_it; it++) {
-    const PetscScalar *ra;
-    PetscScalar       *pa, *ga, *ta, *ca;
-    PetscReal          loc[4], glob[4], G, beta, tau, scale;
+    PetscReal loc[4], glob[4], G, beta, tau;
 
-    if (pending > 1e-7 || (change <= s->predictor_rtol && pending > 0)) {
+    if (missed > 1e-7 || (change <= s->predictor_rtol && missed > 0)) {
+      PetscCall(VecScale(p, scale));
+      scale = 1.0;
       PetscCall(MatMult(s->K, p, u));
-      PetscCall(VecSet(c, 0.0));
-      pending = 0.0;
+      missed = 0.0;
       updates++;
     } else if (change <= s->predictor_rtol) break;
-    /* the set p > 0, and the gap relative to its mean there (that mean is the indentation d) */
-    PetscCall(VecWAXPY(g, 1.0, u, s->h));
+    /* rescale; the set p > 0, and the gap's mean there (the indentation d) */
     PetscCall(VecGetArray(p, &pa));
+    PetscCall(VecGetArray(u, &ua));
     PetscCall(VecGetArray(g, &ga));
+    PetscCall(VecGetArrayRead(s->h, &ha));
     loc[0] = loc[1] = 0.0;
-    for (k = 0; k < n; k++)
+    for (k = 0; k < n; k++) {
+      pa[k] *= scale;
+      ua[k] *= scale;
+      ga[k] = ua[k] + ha[k];
       if (PetscRealPart(pa[k]) > 0) {
         loc[0] += 1;
         loc[1] += PetscRealPart(ga[k]);
       }
+    }
+    PetscCall(VecRestoreArrayRead(s->h, &ha));
+    PetscCall(VecRestoreArray(u, &ua));
+    scale = 1.0;
     PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, s->comm));
     nc   = glob[0];
     gbar = glob[1] / nc;
@@ -95,7 +103,11 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
       if (PetscRealPart(pa[k]) > 0) loc[0] += PetscRealPart(ga[k] * ga[k]);
     }
     PetscCall(MPIU_Allreduce(loc, &G, 1, MPIU_REAL, MPIU_SUM, s->comm));
-    if (G == 0) break; /* the gap is closed exactly on the set */
+    if (G == 0) { /* the gap is closed exactly on the set */
+      PetscCall(VecRestoreArray(g, &ga));
+      PetscCall(VecRestoreArray(p, &pa));
+      break;
+    }
     /* conjugate direction on the set, restarted (delta = 0) after points joined */
     beta = delta * G / Gold;
     Gold = G;
@@ -130,8 +142,9 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
       }
       tau = glob[2] / den;
     }
-    /* p - tau t; points with p < 0 leave, points off the set where the surfaces overlap join */
-    PetscCall(VecGetArray(c, &ca));
+    /* p - tau t (u with it); points with p < 0 leave, points off the set where the surfaces
+       overlap join */
+    PetscCall(VecGetArray(u, &ua));
     loc[0] = loc[1] = loc[2] = loc[3] = 0.0;
     for (k = 0; k < n; k++) {
       const PetscReal old = PetscRealPart(pa[k]), step = old - tau * PetscRealPart(ta[k]);
@@ -144,41 +157,37 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
       }
       loc[0] += PetscAbsReal(v - old);
       loc[1] += PetscAbsReal(v - step);
-      ca[k] += v - step;
+      loc[3] += v;
       pa[k] = v;
+      ua[k] -= tau * ra[k];
     }
-    PetscCall(VecRestoreArray(c, &ca));
+    PetscCall(VecRestoreArray(u, &ua));
     PetscCall(VecRestoreArray(t, &ta));
     PetscCall(VecRestoreArray(g, &ga));
     PetscCall(VecRestoreArray(p, &pa));
     PetscCall(VecRestoreArrayRead(r, &ra));
-    PetscCall(VecAXPY(u, -tau, r));
-    /* the force constraint */
-    PetscCall(VecSum(p, &sum));
-    PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_REAL, MPIU_SUM, s->comm));
-    PetscCheck(PetscRealPart(sum) > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "-adh_predictor polonsky-keer: the pressure vanished on the whole grid");
-    scale = F / (A * PetscRealPart(sum));
-    PetscCall(VecScale(p, scale));
-    PetscCall(VecScale(u, scale));
-    PetscCall(VecScale(c, scale));
-    delta   = glob[2] > 0 ? 0.0 : 1.0;
-    change  = glob[0] * scale * A / F;
-    pending = pending * scale + glob[1] * scale * A / F;
+    PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPIU_SUM, s->comm));
+    /* the force constraint, applied in the next pass */
+    PetscCheck(glob[3] > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "-adh_predictor polonsky-keer: the pressure vanished on the whole grid");
+    scale  = F / (A * glob[3]);
+    delta  = glob[2] > 0 ? 0.0 : 1.0;
+    change = glob[0] * scale * A / F;
+    missed = missed + glob[1] * scale * A / F;
   }
+  PetscCall(VecScale(p, scale));
   PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
   s->d = gbar;
   s->predictor_its += it;
   /* the set is where the pressure is positive; the unit response vanishes off it, as p does */
   {
-    const PetscScalar *pa;
-    PetscScalar       *xa = NULL;
+    PetscScalar *xa = NULL;
     if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-    PetscCall(VecGetArrayRead(p, &pa));
+    PetscCall(VecGetArray(p, &pa));
     for (k = 0; k < n; k++) {
       s->in_set[k] = PetscRealPart(pa[k]) > 0;
       if (xa && !s->in_set[k]) xa[k] = 0.0;
     }
-    PetscCall(VecRestoreArrayRead(p, &pa));
+    PetscCall(VecRestoreArray(p, &pa));
     if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
   }
   PetscCall(AdhSolverRebuildSet_Private(s));
@@ -186,7 +195,6 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
   PetscCall(VecDestroy(&g));
   PetscCall(VecDestroy(&t));
   PetscCall(VecDestroy(&r));
-  PetscCall(VecDestroy(&c));
   PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

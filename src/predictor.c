@@ -47,7 +47,7 @@ static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
 static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
 {
   const PetscReal    A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
-  Vec                p = s->p, u, g, t, r;
+  Vec                p = s->p, u, g, t, r, z = NULL;
   const PetscScalar *ha, *ra;
   PetscScalar       *pa, *ua, *ga, *ta, sum;
   PetscReal          Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, missed = 0.0, scale = 1.0;
@@ -59,6 +59,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
   PetscCall(VecDuplicate(p, &g));
   PetscCall(VecDuplicate(p, &t));
   PetscCall(VecDuplicate(p, &r));
+  if (s->predictor_fourier) PetscCall(VecDuplicate(p, &z));
   PetscCall(VecGetLocalSize(p, &n));
   /* start from the previous pressure scaled to F, or from a uniform one */
   PetscCall(VecSum(p, &sum));
@@ -100,7 +101,29 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
     loc[0] = 0.0;
     for (k = 0; k < n; k++) {
       ga[k] -= gbar;
-      if (PetscRealPart(pa[k]) > 0) loc[0] += PetscRealPart(ga[k] * ga[k]);
+      if (!z && PetscRealPart(pa[k]) > 0) loc[0] += PetscRealPart(ga[k] * ga[k]);
+    }
+    if (z) {
+      /* preconditioned: z = P S P g with S the stiffness E*|q|/2 on the grid (the inverse of the
+         compliance's symbol) and P the projection onto the set's pressures of zero sum */
+      PetscScalar *za;
+      PetscReal    zloc[2], zglob[2], zbar;
+
+      PetscCall(VecGetArray(r, &ta));
+      for (k = 0; k < n; k++) ta[k] = PetscRealPart(pa[k]) > 0 ? ga[k] : 0.0;
+      PetscCall(VecRestoreArray(r, &ta));
+      PetscCall(MatMult(s->S, r, z));
+      PetscCall(VecGetArray(z, &za));
+      zloc[0] = 0.0;
+      for (k = 0; k < n; k++)
+        if (PetscRealPart(pa[k]) > 0) zloc[0] += PetscRealPart(za[k]);
+      PetscCall(MPIU_Allreduce(zloc, zglob, 1, MPIU_REAL, MPIU_SUM, s->comm));
+      zbar = zglob[0] / nc;
+      for (k = 0; k < n; k++) {
+        za[k] = PetscRealPart(pa[k]) > 0 ? za[k] - zbar : 0.0;
+        loc[0] += PetscRealPart(ga[k] * za[k]);
+      }
+      PetscCall(VecRestoreArray(z, &za));
     }
     PetscCall(MPIU_Allreduce(loc, &G, 1, MPIU_REAL, MPIU_SUM, s->comm));
     if (G == 0) { /* the gap is closed exactly on the set */
@@ -112,7 +135,13 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
     beta = delta * G / Gold;
     Gold = G;
     PetscCall(VecGetArray(t, &ta));
-    for (k = 0; k < n; k++) ta[k] = PetscRealPart(pa[k]) > 0 ? ga[k] + beta * ta[k] : 0.0;
+    if (z) {
+      const PetscScalar *za;
+      PetscCall(VecGetArrayRead(z, &za));
+      for (k = 0; k < n; k++) ta[k] = PetscRealPart(pa[k]) > 0 ? za[k] + beta * ta[k] : 0.0;
+      PetscCall(VecRestoreArrayRead(z, &za));
+    } else
+      for (k = 0; k < n; k++) ta[k] = PetscRealPart(pa[k]) > 0 ? ga[k] + beta * ta[k] : 0.0;
     PetscCall(VecRestoreArray(t, &ta));
     PetscCall(VecRestoreArray(g, &ga));
     PetscCall(VecRestoreArray(p, &pa));
@@ -195,6 +224,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
   PetscCall(VecDestroy(&g));
   PetscCall(VecDestroy(&t));
   PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&z));
   PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

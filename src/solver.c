@@ -44,6 +44,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONPOHRTPOPOV));
   s->predictor_rtol   = 1e-8;
   s->predictor_max_it = 10000;
+  s->predictor_fourier = PETSC_TRUE;
   PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORPOLONSKYKEER));
   *solver = s;
   PetscFunctionReturn(0);
@@ -134,6 +135,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsFList("-adh_predictor", "Force control without adhesion: guess the contact set with Polonsky-Keer's constrained CG (polonsky-keer) before the set-update loop certifies it, or not (none); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
   PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "AdhSolver", s->predictor_rtol, &s->predictor_rtol, NULL));
+  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer: precondition with the inverse of the compliance's symbol, as the set solves do", "AdhSolver", s->predictor_fourier, &s->predictor_fourier, NULL));
   PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "AdhSolver", s->predictor_max_it, &s->predictor_max_it, NULL));
   PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
   PetscOptionsEnd();

@@ -87,6 +87,7 @@ struct _n_AdhSolver {
   PetscErrorCode (*predict)(AdhSolver, PetscReal F); /* NULL: none */
   PetscReal predictor_rtol;
   PetscInt  predictor_max_it, predictor_its;
+  PetscBool predictor_fourier; /* precondition with the stiffness E*|q|/2 */
   /* detachment criterion */
   char            criterion_type[64];
   AdhCriterionOps crops;

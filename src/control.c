@@ -111,8 +111,10 @@ static PetscErrorCode SeedFirstTouch(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* The equilibrium set carrying F, from the current set; it may empty (no equilibrium). */
-static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F)
+/* The equilibrium set carrying F, from the current set; it may empty (no equilibrium). unique:
+   there is no adhesion, so the state carrying F is the same from any set, and the order in which
+   points join does not matter (the unit response may then be solved loosely). */
+static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
 {
   const PetscReal A  = s->grid->hx * s->grid->hy;
   /* d = e - c0 mean(p), and mean(p) = F / (cell area) is fixed by the target */
@@ -127,9 +129,19 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F)
 
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set for the force %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)F, s->max_outer);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
-    PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, s->e, s->h, PETSC_FALSE));
     PetscCall(VecSum(s->p, &Fp));
+    if (unique) {
+      /* the unit response x only corrects p by de x, de = (F/A - sum p)/sum x: x needs only as
+         many digits as the mismatch leaves to the solver's tolerance (at most 1e-3 relative) */
+      PetscReal rtol, atol, dtol, mismatch = PetscAbsReal(F / A - PetscRealPart(Fp));
+      PetscInt  maxits;
+
+      PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
+      PetscCall(KSPSetTolerances(s->ksp, mismatch > 0 ? PetscMin(1e-3, PetscMax(rtol, rtol * PetscAbsReal(F / A) / mismatch)) : 1e-3, atol, dtol, maxits));
+      PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
+      PetscCall(KSPSetTolerances(s->ksp, rtol, atol, dtol, maxits));
+    } else PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
     PetscCall(VecSum(s->xunit, &Fx));
     PetscCheck(PetscRealPart(Fx) > 0, s->comm, PETSC_ERR_PLIB, "The unit-indentation response of the contact set carries no force");
     de = (F / A - PetscRealPart(Fp)) / PetscRealPart(Fx);
@@ -184,7 +196,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   PetscCall(SaveState(s, &s->previous));
   /* without adhesion the state carrying F > 0 is unique: a predictor may guess its set */
   if (s->predict && F > 0 && !Adhesive(s)) PetscCall(s->predict(s, F));
-  PetscCall(Equilibrate(s, F));
+  PetscCall(Equilibrate(s, F, (PetscBool)(s->predict && !Adhesive(s))));
   if (s->npoints) PetscFunctionReturn(0);
   PetscCall(RestoreState(s, &s->previous));
   /* relative to the step's forces, so that a pull-off force of 0 (no adhesion) ends too */
@@ -193,7 +205,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
     const PetscReal mid = 0.5 * (carried + failed);
     /* each trial is a step of its own from the saved state */
     PetscCall(PetscArrayzero(s->left, s->nlocal));
-    PetscCall(Equilibrate(s, mid));
+    PetscCall(Equilibrate(s, mid, PETSC_FALSE));
     if (s->npoints) {
       carried = mid;
       PetscCall(SaveState(s, &s->previous));

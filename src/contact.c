@@ -443,6 +443,8 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
   PetscCall(AdhSolverCheckBelowFullContact_Private(s, d));
   s->d           = d;
   s->joined_step = 0;
+  /* without adhesion the state at d is unique: a predictor may guess its set */
+  if (s->predict && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->predict(s, PETSC_FALSE, d));
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));

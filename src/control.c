@@ -167,12 +167,6 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
   PetscFunctionReturn(0);
 }
 
-/* No tension allowed anywhere: the adhesion-free start, or no work of adhesion at all. */
-static PetscBool Adhesive(AdhSolver s)
-{
-  return (PetscBool)(s->adhesive && (s->Sigma > 0 || s->Sigma_field));
-}
-
 /* Force control: the equilibrium set carrying F. When none does (the set empties), the contact
    has come off: bisect between the previous state's force and F from the previous state, and end
    on the state carrying the largest tension (within -adh_pulloff_rtol), marked pulled off. */
@@ -195,8 +189,8 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   carried = PetscRealPart(sum) * A;
   PetscCall(SaveState(s, &s->previous));
   /* without adhesion the state carrying F > 0 is unique: a predictor may guess its set */
-  if (s->predict && F > 0 && !Adhesive(s)) PetscCall(s->predict(s, F));
-  PetscCall(Equilibrate(s, F, (PetscBool)(s->predict && !Adhesive(s))));
+  if (s->predict && F > 0 && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->predict(s, PETSC_TRUE, F));
+  PetscCall(Equilibrate(s, F, (PetscBool)(s->predict && !AdhSolverIsAdhesive_Private(s))));
   if (s->npoints) PetscFunctionReturn(0);
   PetscCall(RestoreState(s, &s->previous));
   /* relative to the step's forces, so that a pull-off force of 0 (no adhesion) ends too */

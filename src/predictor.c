@@ -1,15 +1,16 @@
 /* Contact-set predictor, a registered type (-adh_predictor): a fast first guess of the contact set
-   and pressure of a force-controlled step without adhesion, handed to the set-update loop
-   (control.c), which then certifies it as it certifies any set. The answer is the loop's: without
-   adhesion the contact problem (p >= 0 on the set, g >= 0 off it, force F) has one solution,
-   and the loop started from a good guess only has fewer sets to go through.
+   and pressure of a step without adhesion, at a force (control.c) or an indentation (contact.c),
+   handed to the set-update loop, which then certifies it as it certifies any set. The answer is
+   the loop's: without adhesion the contact problem (p >= 0 on the set, g >= 0 off it, at d or
+   carrying F) has one solution, and the loop started from a good guess only has fewer sets to
+   go through.
 
    none:          the loop starts from the previous state's set.
-   polonsky-keer: Polonsky & Keer's conjugate gradient with the force constraint (Wear 1999):
-                  one compliance application per iteration where no point leaves or joins the
-                  set, two where some do. It stops when an iteration changes the pressure by
-                  less than -adh_predictor_rtol of its 1-norm, or after as many iterations as
-                  -adh_predictor_max_it allows (the loop goes on from where it got). */
+   polonsky-keer: Polonsky & Keer's conjugate gradient (Wear 1999), with the force constraint or
+                  at fixed d, preconditioned with the stiffness E*|q|/2 (-adh_predictor_fourier).
+                  It stops when an iteration changes the pressure by less than
+                  -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it iterations
+                  (the loop goes on from where it got). */
 #include "solverimpl.h"
 
 static PetscFunctionList AdhPredictorList       = NULL;
@@ -34,9 +35,9 @@ static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
 
 /* ---- polonsky-keer ---- */
 
-/* The pressure p >= 0 carrying F with the gap g = K p + h - d >= 0 closed where p > 0, on the whole
-   grid; the contact set is p > 0. s->p is the start (the previous state's pressure, rescaled) and
-   the result; s->d is set to the indentation of the result.
+/* The pressure p >= 0 with the gap g = K p + h - d >= 0 closed where p > 0, on the whole grid,
+   carrying F (force: d is the gap's mean on the set, and s->d is set to it) or at d; the contact
+   set is p > 0. s->p is the start (the previous state's pressure) and the result.
 
    The displacement u = K p follows p along the search direction (u -= tau K t) at no cost. Where
    an iteration also moves points off or onto the set, u misses that change; u is computed anew
@@ -44,8 +45,9 @@ static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
    pressure's 1-norm, and always before the iteration may stop. The loops over the grid are
    fused, and the force constraint's rescaling of p and u is applied in the next pass over them:
    at 1024^2 the passes over memory cost as much as the transforms. */
-static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
+static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal target)
 {
+  const PetscReal    F = force ? target : 0.0, d = force ? 0.0 : target;
   const PetscReal    A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
   Vec                p = s->p, u, g, t, r, z = NULL;
   const PetscScalar *ha, *ra;
@@ -61,10 +63,37 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
   PetscCall(VecDuplicate(p, &r));
   if (s->predictor_fourier) PetscCall(VecDuplicate(p, &z));
   PetscCall(VecGetLocalSize(p, &n));
-  /* start from the previous pressure scaled to F, or from a uniform one */
+  /* start from the previous pressure (scaled to F), or from a uniform one (force), or from the
+     overlap w = max(0, d - h) scaled to the least energy along it, c = w.(d - h) / w.K w
+     (indentation; on a periodic cell a pressure too large would push the open surface into
+     overlap everywhere, K p having no mean) */
   PetscCall(VecSum(p, &sum));
-  if (PetscRealPart(sum) > 0) PetscCall(VecScale(p, F / (A * PetscRealPart(sum))));
-  else PetscCall(VecSet(p, F / (A * N)));
+  if (force && PetscRealPart(sum) > 0) PetscCall(VecScale(p, F / (A * PetscRealPart(sum))));
+  else if (force) PetscCall(VecSet(p, F / (A * N)));
+  else if (!(PetscRealPart(sum) > 0)) {
+    PetscCall(VecGetArray(p, &pa));
+    PetscCall(VecGetArrayRead(s->h, &ha));
+    for (k = 0; k < n; k++) pa[k] = PetscMax(0.0, d - PetscRealPart(ha[k]));
+    PetscCall(VecRestoreArrayRead(s->h, &ha));
+    PetscCall(VecRestoreArray(p, &pa));
+    PetscCall(VecSum(p, &sum));
+    if (PetscRealPart(sum) > 0) {
+      PetscScalar wb, wKw;
+      PetscCall(MatMult(s->K, p, u));
+      PetscCall(VecDot(p, u, &wKw));
+      PetscCall(VecDot(p, p, &wb)); /* w.(d - h) = w.w where w > 0 */
+      PetscCall(VecScale(p, PetscRealPart(wb) / PetscRealPart(wKw)));
+    }
+    if (!(PetscRealPart(sum) > 0)) { /* nothing touches at d */
+      PetscCall(VecDestroy(&u));
+      PetscCall(VecDestroy(&g));
+      PetscCall(VecDestroy(&t));
+      PetscCall(VecDestroy(&r));
+      PetscCall(VecDestroy(&z));
+      PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(VecSet(t, 0.0));
   PetscCall(MatMult(s->K, p, u));
   for (it = 0; it < s->predictor_max_it; it++) {
@@ -97,7 +126,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
     scale = 1.0;
     PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, s->comm));
     nc   = glob[0];
-    gbar = glob[1] / nc;
+    gbar = force ? glob[1] / nc : d;
     loc[0] = 0.0;
     for (k = 0; k < n; k++) {
       ga[k] -= gbar;
@@ -118,7 +147,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
       for (k = 0; k < n; k++)
         if (PetscRealPart(pa[k]) > 0) zloc[0] += PetscRealPart(za[k]);
       PetscCall(MPIU_Allreduce(zloc, zglob, 1, MPIU_REAL, MPIU_SUM, s->comm));
-      zbar = zglob[0] / nc;
+      zbar = force ? zglob[0] / nc : 0.0;
       for (k = 0; k < n; k++) {
         za[k] = PetscRealPart(pa[k]) > 0 ? za[k] - zbar : 0.0;
         loc[0] += PetscRealPart(ga[k] * za[k]);
@@ -161,7 +190,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
       }
     PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPIU_SUM, s->comm));
     {
-      const PetscReal den = glob[3] - glob[0] / nc * glob[1];
+      const PetscReal den = glob[3] - (force ? glob[0] / nc * glob[1] : 0.0);
       if (!(den > 0)) { /* the direction changes nothing any more: converged to rounding */
         PetscCall(VecRestoreArray(t, &ta));
         PetscCall(VecRestoreArray(g, &ga));
@@ -181,7 +210,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
 
       if (v < 0) v = 0.0;
       else if (old == 0.0 && PetscRealPart(ga[k]) < 0) {
-        v = -tau * PetscRealPart(ga[k]);
+        v = -PetscRealPart(ga[k]) * tau;
         loc[2] += 1;
       }
       loc[0] += PetscAbsReal(v - old);
@@ -197,15 +226,15 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
     PetscCall(VecRestoreArrayRead(r, &ra));
     PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPIU_SUM, s->comm));
     /* the force constraint, applied in the next pass */
-    PetscCheck(glob[3] > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "-adh_predictor polonsky-keer: the pressure vanished on the whole grid");
-    scale  = F / (A * glob[3]);
+    if (!(glob[3] > 0)) break; /* no contact: under displacement control, nothing touches */
+    scale  = force ? F / (A * glob[3]) : 1.0;
     delta  = glob[2] > 0 ? 0.0 : 1.0;
-    change = glob[0] * scale * A / F;
-    missed = missed + glob[1] * scale * A / F;
+    change = glob[0] / glob[3];
+    missed = missed + glob[1] / glob[3];
   }
   PetscCall(VecScale(p, scale));
   PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
-  s->d = gbar;
+  if (force) s->d = gbar;
   s->predictor_its += it;
   /* the set is where the pressure is positive; the unit response vanishes off it, as p does */
   {
@@ -232,7 +261,7 @@ static PetscErrorCode Predict_PolonskyKeer(AdhSolver s, PetscReal F)
 static PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
 {
   PetscFunctionBegin;
-  s->predict = Predict_PolonskyKeer;
+  s->predict = PolonskyKeer;
   PetscFunctionReturn(0);
 }
 
@@ -271,6 +300,7 @@ PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
   PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (none or polonsky-keer)", type);
   PetscCall(create(s));
   PetscCall(PetscStrncpy(s->predictor_type, type, sizeof(s->predictor_type)));
+  s->predictor_chosen = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 

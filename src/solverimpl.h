@@ -84,10 +84,11 @@ struct _n_AdhSolver {
 
   /* contact-set predictor (predictor.c) */
   char      predictor_type[64];
-  PetscErrorCode (*predict)(AdhSolver, PetscReal F); /* NULL: none */
+  PetscErrorCode (*predict)(AdhSolver, PetscBool force, PetscReal target); /* NULL: none */
   PetscReal predictor_rtol;
   PetscInt  predictor_max_it, predictor_its;
   PetscBool predictor_fourier; /* precondition with the stiffness E*|q|/2 */
+  PetscBool predictor_chosen;  /* set by the user (else chosen by the boundary at set-up) */
   /* detachment criterion */
   char            criterion_type[64];
   AdhCriterionOps crops;
@@ -157,6 +158,12 @@ struct _n_AdhSolver {
 };
 
 PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
+/* Tension is allowed somewhere: not the adhesion-free start, and a work of adhesion (or a fixed
+   critical stress). Without it the state at a given d or F is unique, whatever the path. */
+static inline PetscBool AdhSolverIsAdhesive_Private(AdhSolver s)
+{
+  return (PetscBool)(s->adhesive && (s->Sigma > 0 || s->Sigma_field));
+}
 PETSC_INTERN PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver, Mat, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);

@@ -6,8 +6,10 @@
    go through.
 
    none:          the loop starts from the previous state's set.
-   polonsky-keer: Polonsky & Keer's conjugate gradient (Wear 1999), with the force constraint or
-                  at fixed d, preconditioned with the stiffness E*|q|/2 (-adh_predictor_fourier).
+   polonsky-keer: Polonsky & Keer's conjugate gradient (Wear 1999), with the force constraint
+                  (preconditioned with the stiffness E*|q|/2, -adh_predictor_fourier) or at
+                  fixed d. Should it lose the whole set, the loop starts from nothing in contact
+                  and still ends in the same state.
                   It stops when an iteration changes the pressure by less than
                   -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it iterations
                   (the loop goes on from where it got). */
@@ -61,7 +63,10 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscCall(VecDuplicate(p, &g));
   PetscCall(VecDuplicate(p, &t));
   PetscCall(VecDuplicate(p, &r));
-  if (s->predictor_fourier) PetscCall(VecDuplicate(p, &z));
+  /* at fixed d on a periodic cell the preconditioned direction can be nearly uniform over a large
+     set, which K hardly feels (it has no mean mode): the step then empties the set (seen at
+     1024^2). With the force constraint that mode is projected out. */
+  if (s->predictor_fourier && force) PetscCall(VecDuplicate(p, &z));
   PetscCall(VecGetLocalSize(p, &n));
   /* start from the previous pressure (scaled to F), or from a uniform one (force), or from the
      overlap w = max(0, d - h) scaled to the least energy along it, c = w.(d - h) / w.K w

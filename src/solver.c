@@ -136,7 +136,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
   PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "AdhSolver", s->predictor_rtol, &s->predictor_rtol, NULL));
-  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer: precondition with the inverse of the compliance's symbol, as the set solves do", "AdhSolver", s->predictor_fourier, &s->predictor_fourier, NULL));
+  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "AdhSolver", s->predictor_fourier, &s->predictor_fourier, NULL));
   PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "AdhSolver", s->predictor_max_it, &s->predictor_max_it, NULL));
   PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
   PetscOptionsEnd();

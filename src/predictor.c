@@ -54,6 +54,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   Vec                p = s->p, u, g, t, r, z = NULL;
   const PetscScalar *ha, *ra;
   PetscScalar       *pa, *ua, *ga, *ta, sum;
+  PetscBool          have_u = PETSC_FALSE; /* u = K p already */
   PetscReal          Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, missed = 0.0, scale = 1.0;
   PetscInt           it, n, k, updates = 0;
 
@@ -88,6 +89,8 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
       PetscCall(VecDot(p, u, &wKw));
       PetscCall(VecDot(p, p, &wb)); /* w.(d - h) = w.w where w > 0 */
       PetscCall(VecScale(p, PetscRealPart(wb) / PetscRealPart(wKw)));
+      PetscCall(VecScale(u, PetscRealPart(wb) / PetscRealPart(wKw)));
+      have_u = PETSC_TRUE;
     }
     if (!(PetscRealPart(sum) > 0)) { /* nothing touches at d */
       PetscCall(VecDestroy(&u));
@@ -100,7 +103,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
     }
   }
   PetscCall(VecSet(t, 0.0));
-  PetscCall(MatMult(s->K, p, u));
+  if (!have_u) PetscCall(MatMult(s->K, p, u));
   for (it = 0; it < s->predictor_max_it; it++) {
     PetscReal loc[4], glob[4], G, beta, tau;
 

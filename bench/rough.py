@@ -8,7 +8,7 @@ build/adhbem under mpirun; the table gives the wall time, the operation counts (
 KSP iterations, compliance applications, all FFT pairs including the preconditioner's; these do
 not depend on the machine) and the peak resident memory of all ranks together over N^2.
 
-    ./run bench rough [--n 256,512,1024] [--np 1,2] [--steps 25] [--gamma 0.004] [--breakdown]
+    ./run bench rough [--n 256,512,1024] [--np 1,2] [--steps 25] [--gamma 0.004] [--breakdown] [-- OPTIONS]
 
 With --breakdown, where the KSP iterations go: each solve of each step, from PETSc's -info
 lines, by what the solve decided (a certified stop before points let go or join, a full solve
@@ -65,7 +65,7 @@ def breakdown(info):
     return out
 
 
-def run(n, np_, d1, steps, gamma, info=False):
+def run(n, np_, d1, steps, gamma, info=False, extra=()):
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "rough.h5")
         cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE,
@@ -73,7 +73,7 @@ def run(n, np_, d1, steps, gamma, info=False):
                "-adh_rms_slope", "0.1", "-adh_seed", "1", "-adh_boundary", "periodic",
                "-adh_gamma", str(gamma), "-adh_start", "adhesive", "-adh_attach", "reach",
                "-adh_path", f"0,{d1!r},{-0.6 * d1!r}", "-adh_steps", str(steps),
-               "-adh_output", out, "-memory_view"] + (["-info", ":sys"] if info else [])
+               "-adh_output", out, "-memory_view"] + (["-info", ":sys"] if info else []) + list(extra)
         t0 = time.time()
         p = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.time() - t0
@@ -97,6 +97,7 @@ def main():
     ap.add_argument("--steps", type=int, default=25, help="steps per leg (2 legs)")
     ap.add_argument("--gamma", type=float, default=0.004, help="work of adhesion")
     ap.add_argument("--breakdown", action="store_true", help="also where the KSP iterations go, by kind of solve")
+    ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
     a = ap.parse_args()
     sizes = [int(v) for v in a.n.split(",")]
     ranks = [int(v) for v in a.np.split(",")]
@@ -106,7 +107,7 @@ def main():
     for n in sizes:
         d1 = depth(n)
         for np_ in ranks:
-            r = run(n, np_, d1, a.steps, a.gamma, a.breakdown)
+            r = run(n, np_, d1, a.steps, a.gamma, a.breakdown, a.extra)
             steps = r["states"] - 1
             print(f"{n:>6} {np_:>5} {d1:>8.4g} {r['states']:>6} {r['wall']:>8.1f} {r['solve']:>8.1f} {r['updates']:>8}"
                   f" {r['worst']:>6} {r['ksp']:>8} {r['ksp'] / steps:>8.0f} {r['kapps']:>8} {r['ffts']:>9}"

@@ -29,7 +29,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
-  s->criterion_radius = 6.0;
+  s->criterion_radius = 16.0;
   s->fields_stride    = 1;
   s->memory_check     = PETSC_TRUE;
   s->checkpoint_every = 1;
@@ -113,7 +113,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(AdhCriterionGetList_Private(&criteria));
   PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: pohrt-popov (the paper, p < -Sigma) or crack-closure (edge energy release rate > dgamma)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
-  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate over the edge points within this many grid spacings", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
+  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");

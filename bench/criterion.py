@@ -186,16 +186,19 @@ def punch(a_over_h, criterion):
     dk = math.sqrt(2 * math.pi * a * dgamma / E)
     s = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=dgamma, indenter="punch", punch_radius=a,
                       start="hertz", criterion=criterion, **OPTIONS)
-    thresholds = []
+    face, tensions = [], []
 
     def record(A, dstar, Fstar):
-        aeff = math.sqrt(A["area"] / math.pi)
-        thresholds.append(Fstar ** 2 / (8 * math.pi * aeff ** 3 * E) / dgamma)
+        if not face:
+            face.append(A["area"])
+        tensions.append(-Fstar)
 
     counts = unload(s, 0.5 * dk, dk, record)
-    # the face lets go at the last threshold, the one whose cascade empties the set (on fine grids
-    # the four single points at the tips of the digitised circle's axes let go before it)
-    ratios = thresholds[-1:]
+    # Kendall's force is the largest tension the face carries, against the face's own radius. On
+    # finer grids parts of the rim let go before the rest (first the four single points at the tips
+    # of the digitised circle's axes), and the largest tension may come at any of these thresholds.
+    aface = math.sqrt(face[0] / math.pi) if face else float("nan")
+    ratios = [max(tensions) ** 2 / (8 * math.pi * aface ** 3 * E) / dgamma] if tensions else []
     return dict(case="flat punch", grid=f"{N}x{N}", size=f"a/h {a_over_h}", ratios=ratios,
                 tension=math.sqrt(ratios[0]) if ratios else float("nan"), **counts)
 

@@ -8,8 +8,9 @@
    contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u, G and three ghosted
-   vectors (40). Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and four ghosted
+   vectors (48), and the four vectors' ghost rows: 2 max(2, ceil(R)) rows of Nx points each per
+   rank. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solverimpl.h"
 
@@ -22,7 +23,16 @@ static PetscLogDouble BytesPerPoint(AdhSolver s)
   PetscBool      cc;
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-  return b + (cc ? 40.0 : 0.0);
+  return b + (cc ? 48.0 : 0.0);
+}
+
+/* Bytes each rank holds beyond the per-point figure: the base, and crack-closure's ghost rows. */
+static PetscLogDouble BytesPerRank(AdhSolver s)
+{
+  PetscBool cc;
+
+  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
+  return AdhRankBaseBytes + (cc ? 4 * 8.0 * 2 * PetscMax(2, PetscCeilReal(s->criterion_radius)) * s->grid->Nx : 0.0);
 }
 
 /* The estimate for the whole run (all ranks) and for the ranks on this node. */
@@ -37,8 +47,8 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
   PetscCallMPI(MPI_Comm_size(shared, &node_size));
   PetscCallMPI(MPI_Comm_free(&shared));
-  if (total) *total = points * BytesPerPoint(s) + size * AdhRankBaseBytes;
-  if (node) *node = (points * BytesPerPoint(s) / size + AdhRankBaseBytes) * node_size;
+  if (total) *total = points * BytesPerPoint(s) + size * BytesPerRank(s);
+  if (node) *node = (points * BytesPerPoint(s) / size + BytesPerRank(s)) * node_size;
   PetscFunctionReturn(0);
 }
 

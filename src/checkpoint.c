@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "solverimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 3
+#define ADH_CHECKPOINT_VERSION 4 /* 4: crack-closure's radius */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -21,7 +21,8 @@ typedef struct {
 /* The options that shape the problem, with this run's values. */
 static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
 {
-  PetscInt n = 0;
+  PetscInt  n      = 0;
+  PetscBool radius = PETSC_FALSE; /* crack-closure's averaging radius shapes its answer */
   *Nx = s->grid->Nx;
   *Ny = s->grid->Ny;
   *Lx = s->grid->Lx;
@@ -36,6 +37,8 @@ static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny,
   shape[n++] = (Shape){"-adh_gamma", PETSC_REAL, &s->gamma};
   shape[n++] = (Shape){"-adh_control", PETSC_STRING, s->control_type};
   shape[n++] = (Shape){"-adh_criterion", PETSC_STRING, s->criterion_type};
+  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &radius));
+  if (radius) shape[n++] = (Shape){"-adh_criterion_radius", PETSC_REAL, &s->criterion_radius};
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
   shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
   return n;

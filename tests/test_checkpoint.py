@@ -207,3 +207,21 @@ def test_a_write_lock_left_by_a_killed_job_does_not_hang(tmp_path):
         locks.remove()
     for f in files:
         assert (tmp_path / f).exists() and not (tmp_path / (f + ".part")).exists()
+
+
+def test_restart_with_another_crack_closure_radius_is_refused(tmp_path):
+    """crack-closure's averaging radius shapes its answer: a restart must repeat it (and one that
+    does goes on)."""
+    serial_only()
+    ck = tmp_path / "ck.h5"
+    run = [EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_criterion", "crack-closure"]
+    r = subprocess.run([*run, "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = subprocess.run([*run, "-adh_criterion_radius", "12", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode != 0 and "-adh_criterion_radius" in r.stderr and "-adh_restart" in r.stderr
+    assert not (tmp_path / "x.h5").exists()
+    r = subprocess.run([*run, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0, r.stderr[-2000:]

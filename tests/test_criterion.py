@@ -88,13 +88,13 @@ def test_flat_punch():
 
 def test_without_adhesion_both_criteria_agree():
     """dgamma = 0: either criterion is non-adhesive contact (every tensile point lets go). The
-    path ends at d = 0, where the apex carries a pressure of rounding size: the FFT plans are made
-    deterministic (estimate), so that both runs round alike."""
+    path stops short of d = 0, where the apex would carry a pressure of rounding size whose sign
+    depends on the solves' path (the certified early stop applies to one criterion only)."""
     serial_only()
     curves = []
     for crit in ("pohrt-popov", "crack-closure"):
         s = adhbem.Solver(n=48, size=1.0, gamma=0.0, radius=1.0, start="hertz", criterion=crit,
-                          path=[0.02, 0.0], steps=6, fftw_planner="estimate")
+                          path=[0.02, 0.0005], steps=6)
         curves.append(s.solve_path())
     a, b = curves
     assert np.array_equal(a["contact_points"], b["contact_points"])

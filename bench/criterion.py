@@ -15,7 +15,8 @@ root is the d at which C lets go. The force there, with the contact size of C, g
 analytic solution:
 
 - straight edges: Johnson's (1995) adhesive wavy surface on a periodic cell, the wave along a
-  grid axis, at atan(1/2) = 26.6 degrees and at 45 degrees (wavevector (1,0), (2,1), (1,1)):
+  grid axis, at atan(1/2) = 26.6 degrees and at 45 degrees (wavevector (1,0), (2,1), (1,1)), and
+  at 14.0, 18.4 and 21.8 degrees ((4,1), (3,1), (5,2)):
   p/p* = sin^2(pi a/lam) - alpha sqrt(tan(pi a/lam)), a the half-width of the contact strip
   (from the area), alpha^2 proportional to dgamma; alpha = 0.3, D = 0.01 lam.
 - the JKR sphere: F = 4 E* a^3 / (3 R) - sqrt(8 pi a^3 E* dgamma), a = sqrt(A / pi).
@@ -213,11 +214,12 @@ def main():
     if args.radius is not None:
         OPTIONS["criterion_radius"] = args.radius
     cases = [(wave, (256, 1, 0)), (wave, (512, 1, 0)), (wave, (2048, 1, 0)), (wave, (256, 2, 1)), (wave, (256, 1, 1)),
+             (wave, (512, 4, 1)), (wave, (512, 3, 1)), (wave, (512, 5, 2)),
              (sphere, (25,)), (cone, (40,)), (punch, (17.5,))]
     if not args.quick:
         cases += [(wave, (512, 2, 1)), (wave, (512, 1, 1)), (sphere, (50,)), (cone, (80,)), (punch, (35.5,))]
     if args.fine:
-        cases += [(sphere, (100,)), (punch, (71.0,))]
+        cases += [(wave, (1024, 3, 1)), (sphere, (100,)), (punch, (71.0,))]
     print(f"{'case':16s} {'grid':>9s} {'resolution':>12s} {'criterion':>14s} {'states':>6s}"
           f" {'dgamma_eff/dgamma':>18s} {'range':>15s} {'tension/analytic':>16s} {'KSP':>7s} {'K apps':>7s} {'s':>6s}")
     for crit in args.criterion.split(","):

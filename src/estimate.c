@@ -16,23 +16,15 @@
 
 static const PetscLogDouble AdhRankBaseBytes = 50e6;
 
-/* Bytes per grid point of this run (see above). */
-static PetscLogDouble BytesPerPoint(AdhSolver s)
-{
-  PetscLogDouble b = s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0;
-  PetscBool      cc;
-
-  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-  return b + (cc ? 48.0 : 0.0);
-}
-
-/* Bytes each rank holds beyond the per-point figure: the base, and crack-closure's ghost rows. */
-static PetscLogDouble BytesPerRank(AdhSolver s)
+/* Bytes per grid point of this run, and bytes each rank holds besides: the base, and
+   crack-closure's ghost rows (see above). */
+static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
   PetscBool cc;
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-  return AdhRankBaseBytes + (cc ? 4 * 8.0 * 2 * PetscMax(2, PetscCeilReal(s->criterion_radius)) * s->grid->Nx : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 48.0 : 0.0);
+  *per_rank  = AdhRankBaseBytes + (cc ? 4 * 8.0 * 2 * AdhCrackClosureWidth(s->criterion_radius) * s->grid->Nx : 0.0);
 }
 
 /* The estimate for the whole run (all ranks) and for the ranks on this node. */
@@ -41,14 +33,16 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   const PetscLogDouble points = (PetscLogDouble)s->grid->Nx * (PetscLogDouble)s->grid->Ny;
   PetscMPIInt          size, node_size;
   MPI_Comm             shared;
+  PetscLogDouble       per_point, per_rank;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
   PetscCallMPI(MPI_Comm_size(shared, &node_size));
   PetscCallMPI(MPI_Comm_free(&shared));
-  if (total) *total = points * BytesPerPoint(s) + size * BytesPerRank(s);
-  if (node) *node = (points * BytesPerPoint(s) / size + BytesPerRank(s)) * node_size;
+  BytesOfRun(s, &per_point, &per_rank);
+  if (total) *total = points * per_point + size * per_rank;
+  if (node) *node = (points * per_point / size + per_rank) * node_size;
   PetscFunctionReturn(0);
 }
 
@@ -73,14 +67,15 @@ static PetscErrorCode CheckIndices(AdhSolver s)
 static PetscErrorCode CheckMemory(AdhSolver s)
 {
   const AdhGrid  g = s->grid;
-  PetscLogDouble node, physical;
+  PetscLogDouble node, physical, per_point, per_rank;
   long           pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
 
   PetscFunctionBegin;
   if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
   physical = (PetscLogDouble)pages * (PetscLogDouble)page;
   PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
-  PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)BytesPerPoint(s), AdhRankBaseBytes / 1e6, physical / 1e9);
+  BytesOfRun(s, &per_point, &per_rank);
+  PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)per_point, (double)per_rank / 1e6, physical / 1e9);
   PetscFunctionReturn(0);
 }
 

@@ -186,6 +186,12 @@ PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscR
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
+/* crack-closure's ghost rows: its averaging radius, and at least the two rows the pairing of open
+   points looks at */
+static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
+{
+  return PetscMax(2, (PetscInt)PetscCeilReal(radius));
+}
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);

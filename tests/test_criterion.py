@@ -56,9 +56,10 @@ def test_straight_edges(N, m, n, pp_low, pp_high):
 def test_jkr_sphere():
     """The JKR sphere at a_c/h = 25 and 50: the work of adhesion at the detachment states and the
     largest tension. crack-closure is closer to dgamma than pohrt-popov at both grids, and its
-    error shrinks with the grid (2.2% at 25, 0.4% at 50)."""
+    errors shrink with the grid (work of adhesion 2.2% at 25, 0.4% at 50; largest tension 3.2%,
+    1.6%)."""
     serial_only()
-    errors = []
+    errors, tension_errors = [], []
     for ratio in (25, 50):
         cc = measure.sphere(ratio, "crack-closure")
         pp = measure.sphere(ratio, "pohrt-popov")
@@ -69,7 +70,8 @@ def test_jkr_sphere():
         assert abs(np.median(qc) - 1) < 0.03 and abs(np.median(qc) - 1) < abs(np.median(qp) - 1)
         assert abs(cc["tension"] - 1) < abs(pp["tension"] - 1)
         errors.append(abs(np.median(qc) - 1))
-    assert errors[1] < errors[0]
+        tension_errors.append(abs(cc["tension"] - 1))
+    assert errors[1] < errors[0] and tension_errors[1] < tension_errors[0]
 
 
 def test_flat_punch():

@@ -8,8 +8,8 @@
    contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and four ghosted
-   vectors (48), and the four vectors' ghost rows: 2 max(2, ceil(R)) rows of Nx points each per
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and three ghosted
+   vectors (40), and the three vectors' ghost rows: 2 max(3, ceil(R)) rows of Nx points each per
    rank. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solverimpl.h"
@@ -23,8 +23,8 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
   PetscBool cc;
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 48.0 : 0.0);
-  *per_rank  = AdhRankBaseBytes + (cc ? 4 * 8.0 * 2 * AdhCrackClosureWidth(s->criterion_radius) * s->grid->Nx : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 40.0 : 0.0);
+  *per_rank  = AdhRankBaseBytes + (cc ? 3 * 8.0 * 2 * AdhCrackClosureWidth(s->criterion_radius) * s->grid->Nx : 0.0);
 }
 
 /* The estimate for the whole run (all ranks) and for the ranks on this node. */

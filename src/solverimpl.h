@@ -186,11 +186,12 @@ PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscR
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
-/* crack-closure's ghost rows: its averaging radius, and at least the two rows the pairing of open
-   points looks at */
+/* crack-closure's ghost rows: its averaging radius, and at least the radius of its estimate of the
+   edge's normal */
+#define ADH_NORMAL_RADIUS 3
 static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
 {
-  return PetscMax(2, (PetscInt)PetscCeilReal(radius));
+  return PetscMax(ADH_NORMAL_RADIUS, (PetscInt)PetscCeilReal(radius));
 }
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);

@@ -3,10 +3,10 @@ at the detachment and the analytic solutions (bench/criterion.py measures; here 
 against the edge's direction; its parallel result; its bad input.
 
 pohrt-popov (the paper's p < -Sigma) acts on a straight edge along a grid axis as if dgamma were
-1.85 times larger, at 45 degrees 1.34 times, at 26.6 degrees 1.12 times (measured, and asserted
-below so that a change of it shows). crack-closure (the edge's energy release rate by virtual
-crack closure, averaged along the edge) is within about 1% on all three, and within about 2% on
-the JKR sphere and the punch, closer with a finer grid (the punch only up to a/h 35.5).
+1.85 times larger, at 45 degrees 1.34 times, at 26.6 degrees 1.12 times, at 18.4 degrees 1.05
+times (measured, and asserted below so that a change of it shows). crack-closure (the edge's
+energy release rate by virtual crack closure, averaged along the edge) is within about 1% on all
+four, and within 2% on the JKR sphere and the punch.
 """
 import math
 import os
@@ -35,6 +35,7 @@ def serial_only():
     (512, 1, 0, 1.80, 1.90),   # along a grid axis (N x 34 cell)
     (256, 2, 1, 1.08, 1.16),   # atan(1/2) = 26.6 degrees: every other edge point one row behind
     (256, 1, 1, 1.30, 1.38),   # 45 degrees
+    (512, 3, 1, 1.03, 1.08),   # atan(1/3) = 18.4 degrees: runs of three, single protruding points
 ])
 def test_straight_edges(N, m, n, pp_low, pp_high):
     """Johnson's adhesive wavy surface: the work of adhesion at the detachment states."""
@@ -55,23 +56,33 @@ def test_straight_edges(N, m, n, pp_low, pp_high):
 
 def test_jkr_sphere():
     """The JKR sphere at a_c/h = 25 and 50: the work of adhesion at the detachment states and the
-    largest tension. crack-closure is closer to dgamma than pohrt-popov at both grids, and its
-    errors shrink with the grid (work of adhesion 2.2% at 25, 0.4% at 50; largest tension 3.2%,
-    1.6%)."""
+    largest tension. crack-closure is closer to dgamma than pohrt-popov at both grids (default
+    radius 16: 0.6% and 1.3% low, pohrt-popov 4.4% and 2.2% high). A curved edge is a staircase
+    whose runs grow like the square root of its radius in grid spacings, and the release rate of
+    single points rises along each run; the first window whose mean runs high lets go, a little
+    early. With an averaging radius of 32 the window spans the runs and the errors shrink with
+    the grid (work of adhesion 0.5%, 0.3%; largest tension 2.4%, 0.5%)."""
     serial_only()
     errors, tension_errors = [], []
     for ratio in (25, 50):
         cc = measure.sphere(ratio, "crack-closure")
         pp = measure.sphere(ratio, "pohrt-popov")
-        qc, qp = np.array(cc["ratios"]), np.array(pp["ratios"])
+        measure.OPTIONS["criterion_radius"] = 32
+        try:
+            wide = measure.sphere(ratio, "crack-closure")
+        finally:
+            del measure.OPTIONS["criterion_radius"]
+        qc, qp, qw = np.array(cc["ratios"]), np.array(pp["ratios"]), np.array(wide["ratios"])
         say(f"\nJKR sphere a_c/h = {ratio}: dgamma_eff/dgamma crack-closure {np.median(qc):.4f} ({qc.min():.4f}-{qc.max():.4f}),"
-            f" pohrt-popov {np.median(qp):.4f}; largest tension / F_adh {cc['tension']:.4f} and {pp['tension']:.4f}")
-        assert len(qc) >= 30
-        assert abs(np.median(qc) - 1) < 0.03 and abs(np.median(qc) - 1) < abs(np.median(qp) - 1)
+            f" radius 32 {np.median(qw):.4f}, pohrt-popov {np.median(qp):.4f}; largest tension / F_adh {cc['tension']:.4f},"
+            f" {wide['tension']:.4f} and {pp['tension']:.4f}")
+        assert len(qc) >= 30 and len(qw) >= 30
+        assert abs(np.median(qc) - 1) < 0.015 and abs(np.median(qc) - 1) < abs(np.median(qp) - 1)
         assert abs(cc["tension"] - 1) < abs(pp["tension"] - 1)
-        errors.append(abs(np.median(qc) - 1))
-        tension_errors.append(abs(cc["tension"] - 1))
-    assert errors[1] < errors[0] and tension_errors[1] < tension_errors[0]
+        assert abs(np.median(qw) - 1) < abs(np.median(qp) - 1)
+        errors.append(abs(np.median(qw) - 1))
+        tension_errors.append(abs(wide["tension"] - 1))
+    assert errors[1] < errors[0] < 0.01 and tension_errors[1] < tension_errors[0]
 
 
 def test_flat_punch():
@@ -118,9 +129,9 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
              dict(n=N, size=float(N), gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
                   attach="reach", hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7, path=[0.0, 0.3, -0.3],
                   steps=4)]
-    # a one-row groove across a sphere at the rank boundaries of 2 and 3 ranks, with the smallest
-    # radius the ghost rows allow: the pairing of open points and the walk along the front look two
-    # rows away, across the boundary
+    # a one-row groove across a sphere at the rank boundaries of 2 and 3 ranks, with a radius below
+    # the ghost rows' least width: the edge's normal looks three rows away and the walk along the
+    # front two, across the boundary
     x = (np.arange(48) - 24 + 0.5) / 48
     X, Y = np.meshgrid(x, x)
     for row in (16, 24):

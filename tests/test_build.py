@@ -53,3 +53,42 @@ def test_import_with_the_other_petsc4py_says_so():
     assert r.returncode == 1, r.stderr[-2000:]
     assert f"in {BUILD} is built against a PETSc with {INDEX_BITS}-bit indices, but petsc4py" in r.stderr, r.stderr[-2000:]
     assert f"PETSc with {other}-bit indices" in r.stderr and "ADHBEM_INDICES" in r.stderr
+
+
+ONE_BLAS_THREAD = """
+import ctypes, os
+from petsc4py import PETSc
+try:
+    blas = ctypes.CDLL("libblas.so.3", mode=os.RTLD_NOLOAD | os.RTLD_LAZY)
+    get = blas.openblas_get_num_threads
+except (OSError, AttributeError):
+    raise SystemExit(3)  # not OpenBLAS: nothing to set
+before = get()
+import adhbem
+adhbem.Solver(n=16, gamma=1e-3)
+print(before, get())
+"""
+
+
+@pytest.mark.parametrize("user_threads", [None, "2"])
+def test_one_blas_thread_per_rank(user_threads):
+    """OpenBLAS (behind PETSc's vector operations) would split long vector updates over a pool of
+    threads that spin between calls and compete with the ranks: creating a solver sets one BLAS
+    thread, unless the user chose a count (OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS, OMP_NUM_THREADS)."""
+    serial_only()
+    env = python_env()
+    for name in ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"):
+        env.pop(name, None)
+    if user_threads:
+        env["OPENBLAS_NUM_THREADS"] = user_threads
+    r = subprocess.run([sys.executable, "-c", ONE_BLAS_THREAD], env=env, capture_output=True, text=True)
+    if r.returncode == 3:
+        pytest.skip("the BLAS is not OpenBLAS")
+    assert r.returncode == 0, r.stderr[-2000:]
+    before, after = (int(v) for v in r.stdout.split())
+    if user_threads:
+        assert before == after == int(user_threads)
+    else:
+        if before < 2:
+            pytest.skip("OpenBLAS starts one thread on this machine")
+        assert after == 1

@@ -171,8 +171,8 @@ static void EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt g
 }
 
 /* The release rate averaged along the front around front point (i, j): the front points reached
-   from it in steps of at most two grid spacings (the front of an edge at 26.6 degrees has every
-   other point one row behind it) without leaving the disk of the radius, so that the fronts of
+   from it in steps of at most two grid spacings (a front drawn on the grid is 8-connected where
+   the edge is smooth; two also bridge a missing point) without leaving the disk of the radius, so that the fronts of
    other contact patches nearby do not count. Weighted by (1 - r^2/radius^2)^2, which fades out at
    the rim: a staircase period cut by the rim then weighs little, and the mean over a curved edge
    does not depend on where the rim cuts it. */

@@ -11,6 +11,7 @@ PETSC_EXTERN PetscClassId ADH_CLASSID;
 PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;
 
 PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
+PETSC_EXTERN PetscErrorCode AdhUseOneBLASThread(void);
 
 /* ---- influence.c: closed-form element integrals (DESIGN.md sections 2 and 3) ---- */
 

@@ -151,29 +151,42 @@ static inline PetscBool Neighbour(const AdhGrid g, PetscBool wrap, PetscInt gys,
   return (PetscBool)(*b >= gys && *b < gys + gym);
 }
 
+/* Whether (i, j) lies on the grid (always on a periodic cell). Neighbour() is false there only
+   when the point is outside the ghosted rows: the ghost width does not cover the offset, a bug. */
+static inline PetscBool OnGrid(const AdhGrid g, PetscBool wrap, PetscInt i, PetscInt j)
+{
+  return (PetscBool)(wrap || (i >= 0 && i < g->Nx && j >= 0 && j < g->Ny));
+}
+
 /* The outward normal of the contact edge at set point (i, j), unnormalised: the sum of the offsets
    to the open points within ADH_NORMAL_RADIUS grid spacings (a disk cut by a straight edge gives
    its normal). Points off a free grid count as neither. */
-static void EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **ul, PetscInt i, PetscInt j, PetscReal n[2])
+static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **ul, PetscInt i, PetscInt j, PetscReal n[2])
 {
   const PetscInt r = ADH_NORMAL_RADIUS;
 
+  PetscFunctionBegin;
   n[0] = n[1] = 0.0;
   for (PetscInt dj = -r; dj <= r; dj++)
     for (PetscInt di = -r; di <= r; di++) {
       PetscInt a, b;
-      if (di * di + dj * dj > r * r || !Neighbour(g, wrap, gys, gym, i, j, di, dj, &a, &b)) continue;
+      if (di * di + dj * dj > r * r) continue;
+      if (!Neighbour(g, wrap, gys, gym, i, j, di, dj, &a, &b)) {
+        PetscCheck(!OnGrid(g, wrap, i + di, j + dj), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: edge normal outside the ghosted rows");
+        continue;
+      }
       if (!PetscIsNanReal(PetscRealPart(ul[b][a]))) {
         n[0] += di;
         n[1] += dj;
       }
     }
+  PetscFunctionReturn(0);
 }
 
 /* The release rate averaged along the front around front point (i, j): the front points reached
    from it in steps of at most two grid spacings (a front drawn on the grid is 8-connected where
-   the edge is smooth; two also bridge a missing point) without leaving the disk of the radius, so that the fronts of
-   other contact patches nearby do not count. Weighted by (1 - r^2/radius^2)^2, which fades out at
+   the edge is smooth; two also bridge a missing point) without leaving the disk of the radius,
+   so that the fronts of other contact patches nearby do not count. Weighted by (1 - r^2/radius^2)^2, which fades out at
    the rim: a staircase period cut by the rim then weighs little, and the mean over a curved edge
    does not depend on where the rim cuts it. */
 static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal *sum, PetscReal *weights)
@@ -260,10 +273,10 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
       if (!s->in_set[k]) continue;
       for (PetscInt n = 0; n < 4 && !front; n++) front = (PetscBool)(Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) && !PetscIsNanReal(PetscRealPart(ul[b][a])));
       if (!front) continue;
-      EdgeNormal(g, wrap, gys, gym, ul, i, j, normal);
+      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
       for (PetscInt n = 0; n < 4; n++) {
         PetscReal un, hn, delta, along;
-        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue;
+        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checked the ghosts */
         un = PetscRealPart(ul[b][a]);
         if (PetscIsNanReal(un)) continue; /* in the set */
         hn    = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */

@@ -96,6 +96,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));
+  PetscCall(AdhUseOneBLASThread());
   PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
   ierr = Run(solver);
   if (ierr && traceback) return (int)ierr;

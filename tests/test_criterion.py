@@ -131,7 +131,7 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
                   steps=4)]
     # a one-row groove across a sphere at the rank boundaries of 2 and 3 ranks, with a radius below
     # the ghost rows' least width: the edge's normal looks three rows away and the walk along the
-    # front two, across the boundary
+    # front two, across the boundary (ghost rows too few for that are an error, not a difference)
     x = (np.arange(48) - 24 + 0.5) / 48
     X, Y = np.meshgrid(x, x)
     for row in (16, 24):

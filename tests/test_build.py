@@ -55,7 +55,6 @@ def test_import_with_the_other_petsc4py_says_so():
     assert f"PETSc with {other}-bit indices" in r.stderr and "ADHBEM_INDICES" in r.stderr
 
 
-
 @pytest.mark.parametrize("user_threads", [None, "2"])
 def test_one_blas_thread_per_rank(user_threads):
     """OpenBLAS (behind PETSc's vector operations) would split long vector updates over a pool of

@@ -33,7 +33,7 @@ def serial_only():
 
 @pytest.mark.parametrize("N, m, n, pp_low, pp_high", [
     (512, 1, 0, 1.80, 1.90),   # along a grid axis (N x 34 cell)
-    (256, 2, 1, 1.08, 1.16),   # atan(1/2) = 26.6 degrees: every other edge point one row behind
+    (256, 2, 1, 1.08, 1.16),   # atan(1/2) = 26.6 degrees: runs of two
     (256, 1, 1, 1.30, 1.38),   # 45 degrees
     (512, 3, 1, 1.03, 1.08),   # atan(1/3) = 18.4 degrees: runs of three, single protruding points
 ])

@@ -186,9 +186,9 @@ static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, 
 /* The release rate averaged along the front around front point (i, j): the front points reached
    from it in steps of at most two grid spacings (a front drawn on the grid is 8-connected where
    the edge is smooth; two also bridge a missing point) without leaving the disk of the radius,
-   so that the fronts of other contact patches nearby do not count. Weighted by (1 - r^2/radius^2)^2, which fades out at
-   the rim: a staircase period cut by the rim then weighs little, and the mean over a curved edge
-   does not depend on where the rim cuts it. */
+   so that the fronts of other contact patches nearby do not count. Weighted by
+   (1 - r^2/radius^2)^2, which fades out at the rim: a staircase period cut by the rim then weighs
+   little, and the mean over a curved edge does not depend on where the rim cuts it. */
 static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal *sum, PetscReal *weights)
 {
   const PetscInt  w = cc->width, side = 2 * w + 1;
@@ -267,24 +267,26 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
     for (i = 0; i < g->Nx; i++) {
       const PetscInt  k = (j - ys) * g->Nx + i, di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
       const PetscReal hi = PetscRealPart(hl[j][i]), ti = -PetscRealPart(pa[k]);
-      PetscReal       open = PETSC_MAX_REAL, best = -PETSC_MAX_REAL, normal[2];
-      PetscBool       front = PETSC_FALSE;
+      PetscReal       delta[4], open = PETSC_MAX_REAL, best = -PETSC_MAX_REAL, normal[2];
+      PetscInt        dir[4], nopen = 0;
       Ga[k] = NAN;
       if (!s->in_set[k]) continue;
-      for (PetscInt n = 0; n < 4 && !front; n++) front = (PetscBool)(Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) && !PetscIsNanReal(PetscRealPart(ul[b][a])));
-      if (!front) continue;
-      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
-      for (PetscInt n = 0; n < 4; n++) {
-        PetscReal un, hn, delta, along;
-        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checked the ghosts */
+      for (PetscInt n = 0; n < 4; n++) { /* the open 4-neighbours and their openings */
+        PetscReal un, hn;
+        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checks the ghosts */
         un = PetscRealPart(ul[b][a]);
         if (PetscIsNanReal(un)) continue; /* in the set */
-        hn    = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */
-        delta = (hn >= PETSC_INFINITY ? hi : hn) - s->d + un;
-        along = di[n] * normal[0] + dj[n] * normal[1];
-        if (along > best || (along == best && delta < open)) {
+        hn             = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */
+        dir[nopen]     = n;
+        delta[nopen++] = (hn >= PETSC_INFINITY ? hi : hn) - s->d + un;
+      }
+      if (!nopen) continue; /* not on the front */
+      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
+      for (PetscInt m = 0; m < nopen; m++) {
+        const PetscReal along = di[dir[m]] * normal[0] + dj[dir[m]] * normal[1];
+        if (along > best || (along == best && delta[m] < open)) {
           best = along;
-          open = delta;
+          open = delta[m];
         }
       }
       Ga[k] = ti * open / 2.0;

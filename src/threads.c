@@ -9,33 +9,17 @@
 #include <stdlib.h>
 #include "adhbem.h"
 
-/* OpenBLAS's thread-count functions, found at run time so that another BLAS needs nothing. The
-   executable sees every library globally; otherwise Debian's OpenBLAS is found by the names it is
-   loaded under (RTLD_NOLOAD: only if already loaded, so the handle closed here leaves it loaded). */
-static void *OpenBLASSymbol(const char name[])
-{
-  const char *const libs[] = {"libblas.so.3", "libopenblas.so.0"};
-  void             *sym    = dlsym(RTLD_DEFAULT, name);
-
-  for (size_t k = 0; !sym && k < sizeof(libs) / sizeof(libs[0]); k++) {
-    void *lib = dlopen(libs[k], RTLD_LAZY | RTLD_NOLOAD);
-    if (!lib) continue;
-    sym = dlsym(lib, name);
-    dlclose(lib);
-  }
-  return sym;
-}
-
 /* Sets OpenBLAS to one thread unless OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS or OMP_NUM_THREADS
-   chose a count; says what it did under -info. */
+   chose a count; says what it did under -info. OpenBLAS's functions are found at run time (the
+   executable sees its libraries globally), so that another BLAS needs nothing. */
 PetscErrorCode AdhUseOneBLASThread(void)
 {
   void (*set_threads)(int);
   int (*get_threads)(void);
 
   PetscFunctionBegin;
-  *(void **)&set_threads = OpenBLASSymbol("openblas_set_num_threads");
-  *(void **)&get_threads = OpenBLASSymbol("openblas_get_num_threads");
+  *(void **)&set_threads = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+  *(void **)&get_threads = dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
   if (!set_threads || !get_threads) {
     PetscCall(PetscInfo(NULL, "BLAS threads: not OpenBLAS, left as they are\n"));
   } else if (getenv("OPENBLAS_NUM_THREADS") || getenv("GOTO_NUM_THREADS") || getenv("OMP_NUM_THREADS")) {

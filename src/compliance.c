@@ -7,9 +7,8 @@
 
    Arrays are row-major [j][i] (j along y, the distributed direction), as in FFTW-MPI. On several
    ranks the forward transform leaves its output transposed and the backward one takes it so,
-   which saves FFTW two global transposes per multiply. On one rank the plans are FFTW's serial
-   ones, with the spectrum in natural order: FFTW-MPI's transposes cost time there (serial pairs
-   are 10-30% faster at 512^2-2048^2) and a scratch array as large as the transform. On the periodic grid the grid's rows are FFTW's (grid.c), and
+   which saves FFTW two global transposes per multiply. On one rank the plans may instead be FFTW's
+   serial ones, with the spectrum in natural order (PlanTransform chooses). On the periodic grid the grid's rows are FFTW's (grid.c), and
    the multiply copies straight between the vectors and the transform array. FFTW's slabs split
    the padded rows of the free transform evenly, which leaves the physical rows on half the ranks;
    there one VecScatter, built once, moves the grid layout to FFTW's and back. Both layouts order
@@ -28,7 +27,7 @@ struct _n_AdhTransform {
   ptrdiff_t  n0, n1;                                  /* transform size: rows (y), columns (x) */
   ptrdiff_t  stride;                                  /* doubles per row of the in-place real array */
   ptrdiff_t  local_n0, local_0_start, local_n1, local_1_start;
-  PetscBool  serial;                                  /* one rank: serial plans, spectrum [ky][kx] instead of FFTW-MPI's transposed [kx][ky] */
+  PetscBool  serial;                                  /* serial plans (one rank): spectrum [ky][kx] instead of FFTW-MPI's transposed [kx][ky] */
   PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
   double    *data;                                    /* in-place transform array */
   fftw_plan  forward, backward;
@@ -384,6 +383,74 @@ static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
   PetscFunctionReturn(0);
 }
 
+/* Seconds of the faster of two forward-backward pairs of t's current plans (its array is zeroed:
+   the values do not change FFTW's speed). */
+static PetscErrorCode TimePair(AdhTransform t, PetscLogDouble *best)
+{
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(t->data, t->local_n0 * t->stride));
+  *best = PETSC_MAX_REAL;
+  for (int k = 0; k < 2; k++) {
+    PetscCall(PetscTime(&t0));
+    fftw_execute(t->forward);
+    fftw_execute(t->backward);
+    PetscCall(PetscTime(&t1));
+    *best = PetscMin(*best, t1 - t0);
+  }
+  PetscFunctionReturn(0);
+}
+
+static void DestroyPlans(AdhTransform t)
+{
+  if (t->forward) fftw_destroy_plan(t->forward);
+  if (t->backward) fftw_destroy_plan(t->backward);
+  t->forward = t->backward = NULL;
+}
+
+static void MakePlans(AdhTransform t, MPI_Comm comm, PetscBool serial, unsigned flags)
+{
+  t->serial = serial;
+  if (serial) {
+    t->forward  = fftw_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->data, (fftw_complex *)t->data, flags);
+    t->backward = fftw_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftw_complex *)t->data, t->data, flags);
+  } else {
+    t->forward  = fftw_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->data, (fftw_complex *)t->data, comm, flags | FFTW_MPI_TRANSPOSED_OUT);
+    t->backward = fftw_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftw_complex *)t->data, t->data, comm, flags | FFTW_MPI_TRANSPOSED_IN);
+  }
+}
+
+/* The plans of t: FFTW-MPI's on several ranks. On one rank FFTW's serial plans skip FFTW-MPI's
+   transposes, which makes a pair 10-30% faster at 256^2-3072^2 (measured on the development
+   machine, 32 MB of L3 cache), so every bounding-box window uses them; beyond, the transposes keep
+   the column transforms in cache (serial 10% slower at 4096^2), so for a transform of more than
+   2^22 points a measuring planner times both and keeps the faster, and an estimating one takes
+   FFTW-MPI's. Either way the result is the same transform; only rounding differs. */
+static PetscErrorCode PlanTransform(AdhTransform t, MPI_Comm comm, PetscMPIInt size, unsigned flags)
+{
+  PetscFunctionBegin;
+  if (size > 1) MakePlans(t, comm, PETSC_FALSE, flags);
+  else if ((PetscLogDouble)t->n0 * (PetscLogDouble)t->n1 <= 4194304.0) MakePlans(t, comm, PETSC_TRUE, flags);
+  else if (flags == FFTW_ESTIMATE) MakePlans(t, comm, PETSC_FALSE, flags);
+  else {
+    PetscLogDouble tserial, tmpi;
+    MakePlans(t, comm, PETSC_TRUE, flags);
+    if (!t->forward || !t->backward) PetscFunctionReturn(0);
+    PetscCall(TimePair(t, &tserial));
+    DestroyPlans(t);
+    MakePlans(t, comm, PETSC_FALSE, flags);
+    if (!t->forward || !t->backward) PetscFunctionReturn(0);
+    PetscCall(TimePair(t, &tmpi));
+    if (tserial < tmpi) {
+      DestroyPlans(t);
+      MakePlans(t, comm, PETSC_TRUE, flags); /* from FFTW's wisdom: no second measuring */
+    }
+    PetscCall(PetscInfo(NULL, "%td x %td transform on one rank: a pair takes %g s with serial plans, %g s with FFTW-MPI's; using %s\n", t->n1, t->n0, tserial, tmpi, t->serial ? "serial" : "FFTW-MPI's"));
+  }
+  PetscFunctionReturn(0);
+}
+
 static unsigned PlannerFlag(PetscInt effort)
 {
   const unsigned flags[] = {FFTW_ESTIMATE, FFTW_MEASURE, FFTW_PATIENT, FFTW_EXHAUSTIVE};
@@ -410,12 +477,8 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
     t->n1       = padded ? 2 * grid->Nx : grid->Nx;
     t->stride   = 2 * (t->n1 / 2 + 1);
     PetscCallMPI(MPI_Comm_size(grid->comm, &size));
-    t->serial = (PetscBool)(size == 1);
-    if (t->serial) {
-      t->local_n0 = t->n0;
-      t->local_n1 = t->n1 / 2 + 1;
-      alloc_local = t->n0 * t->local_n1;
-    } else alloc_local = fftw_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, grid->comm, &t->local_n0, &t->local_0_start, &t->local_n1, &t->local_1_start);
+    /* on one rank either layout fits: the whole transform, n0 x (n1/2 + 1) complex values */
+    alloc_local = fftw_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, grid->comm, &t->local_n0, &t->local_0_start, &t->local_n1, &t->local_1_start);
     t->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
     if (!t->data) PetscCall(PetscFree(t));
     PetscCheck(t, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
@@ -425,20 +488,13 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
        each rank times its own trials, and a limit would let ranks take different planning paths
        into different collectives (a deadlock). */
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-    if (t->serial) {
-      t->forward  = fftw_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->data, (fftw_complex *)t->data, PlannerFlag(effort));
-      t->backward = fftw_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftw_complex *)t->data, t->data, PlannerFlag(effort));
-    } else {
-      t->forward  = fftw_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->data, (fftw_complex *)t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_OUT);
-      t->backward = fftw_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftw_complex *)t->data, t->data, grid->comm, PlannerFlag(effort) | FFTW_MPI_TRANSPOSED_IN);
-    }
+    PetscCall(PlanTransform(t, grid->comm, size, PlannerFlag(effort)));
     if (!t->forward || !t->backward) { /* nothing half-made stays behind */
       const ptrdiff_t n0 = t->n0, n1 = t->n1;
-      if (t->forward) fftw_destroy_plan(t->forward);
-      if (t->backward) fftw_destroy_plan(t->backward);
+      DestroyPlans(t);
       fftw_free(t->data);
       PetscCall(PetscFree(t));
-      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW-MPI could not plan a %td x %td transform", n0, n1);
+      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW could not plan a %td x %td transform", n0, n1);
     }
 
     /* The scatter between the grid's rows and the physical rows of FFTW's slab, where they differ. */

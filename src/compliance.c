@@ -7,9 +7,10 @@
 
    Arrays are row-major [j][i] (j along y, the distributed direction), as in FFTW-MPI. On several
    ranks the forward transform leaves its output transposed and the backward one takes it so,
-   which saves FFTW two global transposes per multiply. On one rank the plans may instead be FFTW's
-   serial ones, with the spectrum in natural order (PlanTransform chooses). On the periodic grid the grid's rows are FFTW's (grid.c), and
-   the multiply copies straight between the vectors and the transform array. FFTW's slabs split
+   which saves FFTW two global transposes per multiply. On one rank the plans may instead be
+   FFTW's serial ones, with the spectrum in natural order (PlanTransform chooses). On the periodic
+   grid the grid's rows are FFTW's (grid.c), and the multiply copies straight between the vectors
+   and the transform array. FFTW's slabs split
    the padded rows of the free transform evenly, which leaves the physical rows on half the ranks;
    there one VecScatter, built once, moves the grid layout to FFTW's and back. Both layouts order
    the entries j*Nx + i, so it is a pure redistribution. */
@@ -421,32 +422,43 @@ static void MakePlans(AdhTransform t, MPI_Comm comm, PetscBool serial, unsigned 
   }
 }
 
+/* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
+   FFTW-MPI's transposed ones. */
+typedef enum { LAYOUT_AUTO, LAYOUT_SERIAL, LAYOUT_TRANSPOSED } Layout;
+static const char *const Layouts[] = {"auto", "serial", "transposed", "Layout", "LAYOUT_", NULL};
+
 /* The plans of t: FFTW-MPI's on several ranks. On one rank FFTW's serial plans skip FFTW-MPI's
-   transposes, which makes a pair 10-30% faster at 256^2-3072^2 (measured on the development
-   machine, 32 MB of L3 cache), so every bounding-box window uses them; beyond, the transposes keep
-   the column transforms in cache (serial 10% slower at 4096^2), so for a transform of more than
-   2^22 points a measuring planner times both and keeps the faster, and an estimating one takes
-   FFTW-MPI's. Either way the result is the same transform; only rounding differs. */
-static PetscErrorCode PlanTransform(AdhTransform t, MPI_Comm comm, PetscMPIInt size, unsigned flags)
+   transposes, which made a pair 10-30% faster from 256^2 to 3072^2 on the development machine
+   (32 MB of L3 cache); at 4096^2 the transposes, which keep the column transforms in cache, made
+   FFTW-MPI's 10% faster. So under auto a transform of up to 2^22 points (every bounding-box window
+   of a grid up to 1024^2) gets serial plans; a larger one gets both, timed, and keeps the faster
+   with a measuring planner, and FFTW-MPI's under estimate (nothing timed: reproducible). Should
+   one family fail to plan, the other is tried. Either way the result is the same transform; only
+   rounding differs. */
+static PetscErrorCode PlanTransform(AdhTransform t, MPI_Comm comm, PetscMPIInt size, unsigned flags, Layout layout)
 {
+  PetscBool serial;
+
   PetscFunctionBegin;
-  if (size > 1) MakePlans(t, comm, PETSC_FALSE, flags);
-  else if ((PetscLogDouble)t->n0 * (PetscLogDouble)t->n1 <= 4194304.0) MakePlans(t, comm, PETSC_TRUE, flags);
-  else if (flags == FFTW_ESTIMATE) MakePlans(t, comm, PETSC_FALSE, flags);
+  if (size > 1) serial = PETSC_FALSE;
+  else if (layout != LAYOUT_AUTO) serial = (PetscBool)(layout == LAYOUT_SERIAL);
+  else if ((PetscLogDouble)t->n0 * (PetscLogDouble)t->n1 <= 4194304.0) serial = PETSC_TRUE;
+  else if (flags == FFTW_ESTIMATE) serial = PETSC_FALSE;
   else {
-    PetscLogDouble tserial, tmpi;
+    PetscLogDouble tserial = PETSC_MAX_REAL, tmpi = PETSC_MAX_REAL;
     MakePlans(t, comm, PETSC_TRUE, flags);
-    if (!t->forward || !t->backward) PetscFunctionReturn(0);
-    PetscCall(TimePair(t, &tserial));
+    if (t->forward && t->backward) PetscCall(TimePair(t, &tserial));
     DestroyPlans(t);
     MakePlans(t, comm, PETSC_FALSE, flags);
-    if (!t->forward || !t->backward) PetscFunctionReturn(0);
-    PetscCall(TimePair(t, &tmpi));
-    if (tserial < tmpi) {
-      DestroyPlans(t);
-      MakePlans(t, comm, PETSC_TRUE, flags); /* from FFTW's wisdom: no second measuring */
-    }
-    PetscCall(PetscInfo(NULL, "%td x %td transform on one rank: a pair takes %g s with serial plans, %g s with FFTW-MPI's; using %s\n", t->n1, t->n0, tserial, tmpi, t->serial ? "serial" : "FFTW-MPI's"));
+    if (t->forward && t->backward) PetscCall(TimePair(t, &tmpi));
+    DestroyPlans(t);
+    serial = (PetscBool)(tserial < tmpi);
+    PetscCall(PetscInfo(NULL, "%td x %td transform on one rank: a pair takes %g s with serial plans, %g s with FFTW-MPI's; using %s\n", t->n1, t->n0, tserial, tmpi, serial ? "serial" : "FFTW-MPI's"));
+  }
+  MakePlans(t, comm, serial, flags); /* after timing, from FFTW's wisdom: no second measuring */
+  if ((!t->forward || !t->backward) && size == 1) {
+    DestroyPlans(t);
+    MakePlans(t, comm, (PetscBool)!serial, flags);
   }
   PetscFunctionReturn(0);
 }
@@ -459,7 +471,7 @@ static unsigned PlannerFlag(PetscInt effort)
 
 /* The grid's transform of the physical size (periodic) or the zero-padded one (free), created on
    first use with the planner effort of the first operator that asks. */
-static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, AdhTransform *tout)
+static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, Layout layout, AdhTransform *tout)
 {
   AdhTransform t = grid->transforms[padded ? 1 : 0];
   ptrdiff_t    alloc_local;
@@ -488,13 +500,13 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
        each rank times its own trials, and a limit would let ranks take different planning paths
        into different collectives (a deadlock). */
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-    PetscCall(PlanTransform(t, grid->comm, size, PlannerFlag(effort)));
+    PetscCall(PlanTransform(t, grid->comm, size, PlannerFlag(effort), layout));
     if (!t->forward || !t->backward) { /* nothing half-made stays behind */
       const ptrdiff_t n0 = t->n0, n1 = t->n1;
       DestroyPlans(t);
       fftw_free(t->data);
       PetscCall(PetscFree(t));
-      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW could not plan a %td x %td transform", n0, n1);
+      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW could not plan a %td x %td transform", n1, n0);
     }
 
     /* The scatter between the grid's rows and the physical rows of FFTW's slab, where they differ. */
@@ -525,6 +537,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   Compliance *c;
   PetscInt    ys, ym, effort = 1;
+  Layout      layout = LAYOUT_AUTO;
+  PetscMPIInt size;
   PetscReal   timelimit = -1.0;
   PetscBool   tlset;
   ptrdiff_t   nspec;
@@ -536,7 +550,10 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
   PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
+  PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "MatCreateAdhCompliance", Layouts, (PetscEnum)layout, (PetscEnum *)&layout, NULL));
   PetscOptionsEnd();
+  PetscCallMPI(MPI_Comm_size(grid->comm, &size));
+  PetscCheck(layout != LAYOUT_SERIAL || size == 1, grid->comm, PETSC_ERR_ARG_INCOMP, "-adh_fftw_layout serial needs one rank; on %d ranks the transforms are FFTW-MPI's (transposed)", (int)size);
   if (grid->fftw_effort >= 0) effort = grid->fftw_effort;
   if (!tlset && grid->fftw_timelimit >= -1.0) timelimit = grid->fftw_timelimit;
 
@@ -546,7 +563,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->boundary = boundary;
   c->Estar    = Estar;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
-  PetscCall(GridGetTransform(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, &c->t));
+  PetscCall(GridGetTransform(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, layout, &c->t));
   c->nhalf = c->t->n0 / 2 + 1;
   nspec    = c->t->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));

@@ -130,6 +130,35 @@ def test_tiny_grids(comm):
         assert np.max(np.abs(assembled(K) - ref)) <= 1e-12 * max(np.max(np.abs(ref)), 1e-3), (Nx, Ny)
 
 
+@pytest.mark.mpi
+@pytest.mark.parametrize("layout", ["serial", "transposed"])
+def test_one_rank_plan_layouts(comm, layout):
+    """On one rank the transforms are FFTW's serial plans (spectrum in natural order) or
+    FFTW-MPI's transposed ones; by default the second only above 2^22 points, so both are forced
+    here (-adh_fftw_layout) on odd and even sizes, free and periodic, against the references.
+    Several ranks always use FFTW-MPI's: serial is refused there, naming the option."""
+    opts = PETSc.Options()
+    opts["adh_fftw_layout"] = layout
+    try:
+        if comm.getSize() > 1:
+            if layout == "serial":
+                with pytest.raises(PETSc.Error) as err:
+                    adhbem.compliance((6, 8), comm=comm)
+                assert "-adh_fftw_layout" in str(err.value)
+            return
+        Lx, Ly, E = 1.3, 0.9, 1.7
+        rng = np.random.default_rng(5)
+        for Nx, Ny in [(7, 5), (8, 11), (12, 12)]:
+            p = rng.standard_normal((Ny, Nx))
+            K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "free", comm=comm)
+            D = dense_free(Nx, Ny, Lx / Nx, Ly / Ny, E)
+            assert rel_max(apply(K, p), (D @ p.ravel()).reshape(Ny, Nx)) < 1e-12, (layout, Nx, Ny)
+            K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "periodic", comm=comm)
+            assert rel_max(apply(K, p), periodic_reference(p, Lx, Ly, E)) < 1e-12, (layout, Nx, Ny)
+    finally:
+        opts.delValue("adh_fftw_layout")
+
+
 # ---- symmetry and positivity ---------------------------------------------------------------------
 
 @pytest.mark.mpi

@@ -10,10 +10,10 @@
    which saves FFTW two global transposes per multiply. On one rank the plans may instead be
    FFTW's serial ones, with the spectrum in natural order (PlanTransform chooses). On the periodic
    grid the grid's rows are FFTW's (grid.c), and the multiply copies straight between the vectors
-   and the transform array. FFTW's slabs split
-   the padded rows of the free transform evenly, which leaves the physical rows on half the ranks;
-   there one VecScatter, built once, moves the grid layout to FFTW's and back. Both layouts order
-   the entries j*Nx + i, so it is a pure redistribution. */
+   and the transform array. FFTW's slabs split the padded rows of the free transform evenly, which
+   leaves the physical rows on half the ranks; there one VecScatter, built once, moves the grid
+   layout to FFTW's and back. Both layouts order the entries j*Nx + i, so it is a pure
+   redistribution. */
 #include <fftw3-mpi.h>
 #include "adhbem.h"
 

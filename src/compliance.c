@@ -451,9 +451,10 @@ static PetscErrorCode PlanTransform(AdhTransform t, MPI_Comm comm, PetscMPIInt s
     DestroyPlans(t);
     MakePlans(t, comm, PETSC_FALSE, flags);
     if (t->forward && t->backward) PetscCall(TimePair(t, &tmpi));
-    DestroyPlans(t);
     serial = (PetscBool)(tserial < tmpi);
     PetscCall(PetscInfo(NULL, "%td x %td transform on one rank: a pair takes %g s with serial plans, %g s with FFTW-MPI's; using %s\n", t->n1, t->n0, tserial, tmpi, serial ? "serial" : "FFTW-MPI's"));
+    if (!serial) PetscFunctionReturn(0); /* FFTW-MPI's plans, just made */
+    DestroyPlans(t);
   }
   MakePlans(t, comm, serial, flags); /* after timing, from FFTW's wisdom: no second measuring */
   if ((!t->forward || !t->backward) && size == 1) {

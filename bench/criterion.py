@@ -40,7 +40,6 @@ import adhbem  # noqa: E402
 
 E = 1.0
 OPTIONS = {}  # solver options every case gets (--radius)
-DEFAULT_RADIUS = 16  # -adh_criterion_radius's default
 
 
 def threshold(s, A, delta):
@@ -100,9 +99,9 @@ def unload(s, d0, scale, on_threshold):
 
 
 def wave(N, m, n, criterion, alpha=0.3):
-    """Johnson's wavy surface with wavevector (m, n) on an N x N periodic cell (N x 34 along an axis:
-    the solution does not depend on y; wide enough for crack-closure's averaging disk)."""
-    ny = max(16, 2 * math.ceil(OPTIONS.get("criterion_radius", DEFAULT_RADIUS)) + 2) if n == 0 else N
+    """Johnson's wavy surface with wavevector (m, n) on an N x N periodic cell (N x 4 along an axis:
+    the solution does not depend on y)."""
+    ny = 4 if n == 0 else N
     L, hgrid = 1.0, 1.0 / N
     lam = L / math.hypot(m, n)
     D = 0.01 * lam

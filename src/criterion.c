@@ -96,63 +96,104 @@ static PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver s)
 
 typedef struct {
   PetscReal radius; /* the release rate is averaged along the front within radius grid spacings */
-  PetscInt  width;  /* ghost rows: AdhCrackClosureWidth(radius) */
-  DM        da;     /* the grid's layout with width ghost rows each side (periodic on a periodic cell) */
-  Vec       u, G;   /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
-  Vec       ul, hl, Gl;     /* the same with their ghosts, and h */
-  PetscInt *seen, *queue;   /* the walk along the front within the disk: offsets (2 width + 1)^2 */
-  PetscInt  stamp;          /* seen[o] == stamp: offset o met in the current walk */
+  PetscInt  width;  /* rows looked at each side: AdhCrackClosureWidth(radius) */
+  /* This rank's rows and width rows each side, gym rows from gys (wrapped on a periodic cell, so a
+     cell with fewer rows than that holds some rows several times; clipped to a free grid), fetched
+     from whichever ranks own them: a rank may own fewer rows than the width, and a narrow cell's
+     averaging window folds onto itself. */
+  PetscInt    gys, gym;
+  VecScatter  fetch;        /* grid vector -> its rows gys..gys+gym-1 */
+  Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
+  Vec         ul, hl, Gl;   /* the same over the fetched rows, and h */
+  PetscScalar **urow, **hrow, **Grow; /* their rows, indexed by global row from gys */
+  PetscInt   *seen, *queue; /* the walk along the front within the disk: offsets (2 width + 1)^2 */
+  PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
 } CrackClosure;
 
-/* The ghosted layout, made at the solver's set-up so that a grid that cannot carry it fails
-   before any work. The edge's normal looks ADH_NORMAL_RADIUS rows away, hence at least that. */
+/* The fetch of the rows each rank looks at, made at the solver's set-up. */
 static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
 {
   CrackClosure   *cc = (CrackClosure *)s->crdata;
   const AdhGrid   g  = s->grid;
-  PetscInt       *ly = NULL;
-  PetscMPIInt     py;
-  PetscInt        fewest;
   const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  DMBoundaryType  b        = periodic ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE;
+  PetscInt        ys, ym, *rows, side;
+  IS              from;
 
   PetscFunctionBegin;
-  if (cc->da) PetscFunctionReturn(0);
+  if (cc->fetch) PetscFunctionReturn(0);
   cc->radius = s->criterion_radius;
   cc->width  = AdhCrackClosureWidth(cc->radius);
-  /* on a periodic cell the averaging disk must not meet itself across the cell */
-  PetscCheck(!periodic || (g->Nx > 2 * cc->width && g->Ny > 2 * cc->width), s->comm, PETSC_ERR_ARG_SIZ, "-adh_criterion crack-closure looks %" PetscInt_FMT " grid spacings around each point: a periodic cell needs more than %" PetscInt_FMT " points per side (it has %" PetscInt_FMT " x %" PetscInt_FMT "); use a smaller -adh_criterion_radius or a larger grid", cc->width, 2 * cc->width, g->Nx, g->Ny);
-  PetscCallMPI(MPI_Comm_size(g->comm, &py));
-  PetscCall(AdhGridGetRowsPerRank(g, &ly));
-  fewest = g->Ny;
-  for (PetscMPIInt r = 0; r < py; r++) fewest = PetscMin(fewest, ly[r]);
-  if (fewest < cc->width) PetscCall(PetscFree(ly));
-  PetscCheck(fewest >= cc->width, s->comm, PETSC_ERR_ARG_SIZ, "-adh_criterion crack-closure looks %" PetscInt_FMT " grid rows around each point: every rank needs at least that many rows (the smallest has %" PetscInt_FMT "; use fewer ranks, a larger grid or a smaller -adh_criterion_radius)", cc->width, fewest);
-  PetscCall(DMDACreate2d(g->comm, b, b, DMDA_STENCIL_BOX, g->Nx, g->Ny, 1, py, 1, cc->width, NULL, ly, &cc->da));
-  PetscCall(PetscFree(ly));
-  PetscCall(DMSetUp(cc->da));
-  PetscCall(DMCreateGlobalVector(cc->da, &cc->u));
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  if (periodic) {
+    cc->gys = ys - cc->width;
+    cc->gym = ym + 2 * cc->width;
+  } else {
+    cc->gys = PetscMax(0, ys - cc->width);
+    cc->gym = PetscMin(g->Ny, ys + ym + cc->width) - cc->gys;
+  }
+  PetscCall(PetscMalloc1(cc->gym, &rows));
+  for (PetscInt r = 0; r < cc->gym; r++) rows[r] = ((cc->gys + r) % g->Ny + g->Ny) % g->Ny;
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, g->Nx, cc->gym, rows, PETSC_OWN_POINTER, &from));
+  PetscCall(AdhGridCreateVector(g, &cc->u));
   PetscCall(VecDuplicate(cc->u, &cc->G));
-  PetscCall(DMCreateLocalVector(cc->da, &cc->ul));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, cc->gym * g->Nx, &cc->ul));
+  PetscCall(VecSetBlockSize(cc->ul, g->Nx));
   PetscCall(VecDuplicate(cc->ul, &cc->hl));
   PetscCall(VecDuplicate(cc->ul, &cc->Gl));
-  PetscCall(PetscCalloc2((2 * cc->width + 1) * (2 * cc->width + 1), &cc->seen, (2 * cc->width + 1) * (2 * cc->width + 1), &cc->queue));
+  PetscCall(VecScatterCreate(cc->u, from, cc->ul, NULL, &cc->fetch));
+  PetscCall(ISDestroy(&from));
+  PetscCall(PetscMalloc3(cc->gym, &cc->urow, cc->gym, &cc->hrow, cc->gym, &cc->Grow));
+  side = 2 * cc->width + 1;
+  PetscCall(PetscCalloc2(side * side, &cc->seen, side * side, &cc->queue));
   PetscFunctionReturn(0);
 }
 
-/* Grid neighbour (i + di, j + dj) in the ghosted arrays: wraps on a periodic cell, false off a
+/* Grid vector v's values on the rows this rank looks at, into l. */
+static PetscErrorCode FetchRows(CrackClosure *cc, Vec v, Vec l)
+{
+  PetscFunctionBegin;
+  PetscCall(VecScatterBegin(cc->fetch, v, l, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(cc->fetch, v, l, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(0);
+}
+
+/* The fetched rows of l: rows[b] is row b of the grid (gys <= b < gys + gym), as DMDA gives them. */
+static PetscErrorCode GetRows(CrackClosure *cc, Vec l, PetscScalar **store, const PetscScalar ***rows)
+{
+  const PetscScalar *a;
+  PetscInt           nx;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetBlockSize(l, &nx));
+  PetscCall(VecGetArrayRead(l, &a));
+  for (PetscInt r = 0; r < cc->gym; r++) store[r] = (PetscScalar *)a + r * nx;
+  *rows = (const PetscScalar **)(store - cc->gys);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreRows(Vec l, PetscScalar **store, const PetscScalar ***rows)
+{
+  const PetscScalar *a = store[0];
+
+  PetscFunctionBegin;
+  PetscCall(VecRestoreArrayRead(l, &a));
+  *rows = NULL;
+  PetscFunctionReturn(0);
+}
+
+/* Grid neighbour (i + di, j + dj) in the fetched rows: wraps on a periodic cell, false off a
    free grid. */
 static inline PetscBool Neighbour(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gym, PetscInt i, PetscInt j, PetscInt di, PetscInt dj, PetscInt *a, PetscInt *b)
 {
   *a = i + di;
   *b = j + dj;
-  if (wrap) *a = (*a + g->Nx) % g->Nx;
+  if (wrap) *a = (*a % g->Nx + g->Nx) % g->Nx; /* offsets reach beyond a narrow cell's width */
   else if (*a < 0 || *a >= g->Nx || *b < 0 || *b >= g->Ny) return PETSC_FALSE;
   return (PetscBool)(*b >= gys && *b < gys + gym);
 }
 
 /* Whether (i, j) lies on the grid (always on a periodic cell). Neighbour() is false there only
-   when the point is outside the ghosted rows: the ghost width does not cover the offset, a bug. */
+   when the point is outside the fetched rows: the width does not cover the offset, a bug. */
 static inline PetscBool OnGrid(const AdhGrid g, PetscBool wrap, PetscInt i, PetscInt j)
 {
   return (PetscBool)(wrap || (i >= 0 && i < g->Nx && j >= 0 && j < g->Ny));
@@ -172,7 +213,7 @@ static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, 
       PetscInt a, b;
       if (di * di + dj * dj > r * r) continue;
       if (!Neighbour(g, wrap, gys, gym, i, j, di, dj, &a, &b)) {
-        PetscCheck(!OnGrid(g, wrap, i + di, j + dj), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: edge normal outside the ghosted rows");
+        PetscCheck(!OnGrid(g, wrap, i + di, j + dj), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: edge normal outside the fetched rows");
         continue;
       }
       if (!PetscIsNanReal(PetscRealPart(ul[b][a]))) {
@@ -209,7 +250,7 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
     const PetscInt  o = cc->queue[head++], di = o % side - w, dj = o / side - w;
     const PetscReal r2 = (PetscReal)(di * di + dj * dj), wt = (1.0 - r2 / rad2) * (1.0 - r2 / rad2);
 
-    PetscCheck(Neighbour(s->grid, wrap, gys, gym, i, j, di, dj, &a, &b), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: front point outside the ghosted rows");
+    PetscCheck(Neighbour(s->grid, wrap, gys, gym, i, j, di, dj, &a, &b), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: front point outside the fetched rows");
     *sum += wt * PetscRealPart(Gl[b][a]);
     *weights += wt;
     for (PetscInt ej = -2; ej <= 2; ej++)
@@ -239,7 +280,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
   PetscInt           ys, ym, gys, gym, i, j, k, a, b, count = 0;
 
   PetscFunctionBegin;
-  PetscCheck(cc->da, s->comm, PETSC_ERR_ORDER, "crack-closure: evaluated before set-up");
+  PetscCheck(cc->fetch, s->comm, PETSC_ERR_ORDER, "crack-closure: evaluated before set-up");
   /* u = K p and g = h - d + u; the set's points carry NaN in u: they have no opening */
   PetscCall(MatMult(s->K, s->p, cc->u));
   PetscCall(VecWAXPY(s->g, 1.0, s->h, cc->u));
@@ -248,10 +289,11 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
   for (k = 0; k < s->nlocal; k++)
     if (s->in_set[k]) ua[k] = NAN;
   PetscCall(VecRestoreArray(cc->u, &ua));
-  PetscCall(DMGlobalToLocal(cc->da, cc->u, INSERT_VALUES, cc->ul));
-  PetscCall(DMGlobalToLocal(cc->da, s->h, INSERT_VALUES, cc->hl));
-  PetscCall(DMDAGetCorners(cc->da, NULL, &ys, NULL, NULL, &ym, NULL));
-  PetscCall(DMDAGetGhostCorners(cc->da, NULL, &gys, NULL, NULL, &gym, NULL));
+  PetscCall(FetchRows(cc, cc->u, cc->ul));
+  PetscCall(FetchRows(cc, s->h, cc->hl));
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  gys = cc->gys;
+  gym = cc->gym;
 
   /* pass 1: G = -p delta / 2 on the front, the points of the set with an open 4-neighbour. When
      the front lets go, the edge moves by one element towards its open side: on a straight edge
@@ -259,8 +301,8 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
      edge's normal. So the opening a front point gets is, by that shift, the one its neighbour
      along that axis has now: delta is the opening of the open neighbour closest to the normal
      (ties: the smaller opening). */
-  PetscCall(DMDAVecGetArrayRead(cc->da, cc->ul, &ul));
-  PetscCall(DMDAVecGetArrayRead(cc->da, cc->hl, &hl));
+  PetscCall(GetRows(cc, cc->ul, cc->urow, &ul));
+  PetscCall(GetRows(cc, cc->hl, cc->hrow, &hl));
   PetscCall(VecGetArray(s->p, &pa));
   PetscCall(VecGetArray(cc->G, &Ga));
   for (j = ys; j < ys + ym; j++)
@@ -273,7 +315,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
       if (!s->in_set[k]) continue;
       for (PetscInt n = 0; n < 4; n++) { /* the open 4-neighbours and their openings */
         PetscReal un, hn;
-        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checks the ghosts */
+        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checks the rows */
         un = PetscRealPart(ul[b][a]);
         if (PetscIsNanReal(un)) continue; /* in the set */
         hn             = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */
@@ -292,13 +334,13 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
       Ga[k] = ti * open / 2.0;
     }
   PetscCall(VecRestoreArray(cc->G, &Ga));
-  PetscCall(DMDAVecRestoreArrayRead(cc->da, cc->hl, &hl));
-  PetscCall(DMDAVecRestoreArrayRead(cc->da, cc->ul, &ul));
-  PetscCall(DMGlobalToLocal(cc->da, cc->G, INSERT_VALUES, cc->Gl));
+  PetscCall(RestoreRows(cc->hl, cc->hrow, &hl));
+  PetscCall(RestoreRows(cc->ul, cc->urow, &ul));
+  PetscCall(FetchRows(cc, cc->G, cc->Gl));
 
   /* pass 2: the mean release rate of the front points within the radius, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  PetscCall(DMDAVecGetArrayRead(cc->da, cc->Gl, &Gl));
+  PetscCall(GetRows(cc, cc->Gl, cc->Grow, &Gl));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (j = ys; j < ys + ym; j++)
     for (i = 0; i < g->Nx; i++) {
@@ -322,7 +364,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
       } else r = PetscMax(r, load);
     }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  PetscCall(DMDAVecRestoreArrayRead(cc->da, cc->Gl, &Gl));
+  PetscCall(RestoreRows(cc->Gl, cc->Grow, &Gl));
   if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   if (removed) {
@@ -343,7 +385,8 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(VecDestroy(&cc->ul));
   PetscCall(VecDestroy(&cc->hl));
   PetscCall(VecDestroy(&cc->Gl));
-  PetscCall(DMDestroy(&cc->da));
+  PetscCall(VecScatterDestroy(&cc->fetch));
+  PetscCall(PetscFree3(cc->urow, cc->hrow, cc->Grow));
   PetscCall(PetscFree2(cc->seen, cc->queue));
   PetscCall(PetscFree(s->crdata));
   PetscFunctionReturn(0);

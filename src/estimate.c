@@ -8,16 +8,16 @@
    contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and three ghosted
-   vectors (40), and the three vectors' ghost rows: 2 max(3, ceil(R)) rows of Nx points each per
-   rank. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and three vectors
+   of the rows each rank looks at (40), and their rows beyond the rank's own: 2 max(3, ceil(R)) rows
+   of Nx points each per rank. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solverimpl.h"
 
 static const PetscLogDouble AdhRankBaseBytes = 50e6;
 
 /* Bytes per grid point of this run, and bytes each rank holds besides: the base, and
-   crack-closure's ghost rows (see above). */
+   crack-closure's rows beyond the rank's own (see above). */
 static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
   PetscBool cc;

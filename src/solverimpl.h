@@ -186,7 +186,7 @@ PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscR
 PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
-/* crack-closure's ghost rows: its averaging radius, and at least the radius of its estimate of the
+/* the rows crack-closure looks at each side of a point: its averaging radius, and at least the radius of its estimate of the
    edge's normal */
 #define ADH_NORMAL_RADIUS 3
 static inline PetscInt AdhCrackClosureWidth(PetscReal radius)

@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "solverimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 4 /* 4: crack-closure's radius */
+#define ADH_CHECKPOINT_VERSION 5 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -19,7 +19,8 @@ typedef struct {
 } Shape;
 
 /* The options that shape the problem, with this run's values. */
-static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
+#define ADH_MAX_SHAPES 24
+static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
 {
   PetscInt  n      = 0;
   PetscBool radius = PETSC_FALSE; /* crack-closure's averaging radius shapes its answer */
@@ -39,8 +40,14 @@ static PetscInt Shapes(AdhSolver s, Shape shape[16], PetscInt *Nx, PetscInt *Ny,
   shape[n++] = (Shape){"-adh_criterion", PETSC_STRING, s->criterion_type};
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &radius));
   if (radius) shape[n++] = (Shape){"-adh_criterion_radius", PETSC_REAL, &s->criterion_radius};
+  shape[n++] = (Shape){"-adh_attach", PETSC_STRING, AdhAttaches[s->attach]};
+  shape[n++] = (Shape){"-adh_critical_stress", PETSC_REAL, &s->sigma_fixed};
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
   shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
+  /* force control's pull-off is found to this tolerance; the predictor's guess is certified, but
+     where a state is not unique (rounding at a pressure of zero) it picks one */
+  if (s->force_control) shape[n++] = (Shape){"-adh_pulloff_rtol", PETSC_REAL, &s->pulloff_rtol};
+  shape[n++] = (Shape){"-adh_predictor", PETSC_STRING, s->predictor_type};
   return n;
 }
 
@@ -125,7 +132,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   char        part[PETSC_MAX_PATH_LEN + 8];
   PetscViewer v;
   Vec         mask;
-  Shape       shape[16];
+  Shape       shape[ADH_MAX_SHAPES];
   PetscInt    n, Nx, Ny, version = ADH_CHECKPOINT_VERSION, npath = s->npath, pulled = s->pulled_off;
   PetscReal   Lx, Ly;
   PetscMPIInt rank;
@@ -177,7 +184,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
 /* Refuse a checkpoint whose problem differs from this run's, naming the option. */
 static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 {
-  Shape     shape[16];
+  Shape     shape[ADH_MAX_SHAPES];
   PetscInt  n, Nx, Ny, version = 0;
   PetscReal Lx, Ly;
 

@@ -238,6 +238,10 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   if (s->gamma_field && s->gamma_file[0]) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_file", PETSC_STRING, s->gamma_file));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Sigma", PETSC_REAL, &s->Sigma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress_fixed", PETSC_BOOL, s->sigma_fixed > 0 ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
+  if (s->sigma_fixed > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress", PETSC_REAL, &s->sigma_fixed));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "attach", PETSC_STRING, AdhAttaches[s->attach]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "predictor", PETSC_STRING, s->predictor_type));
+  if (s->force_control) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulloff_rtol", PETSC_REAL, &s->pulloff_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hy", PETSC_REAL, &g->hy));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Lx", PETSC_REAL, &g->Lx));

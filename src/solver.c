@@ -397,8 +397,9 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
-  if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings\n", s->criterion_type, (double)s->criterion_radius));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s\n", s->criterion_type));
+  if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));
+  if (s->force_control) PetscCall(PetscViewerASCIIPrintf(viewer, "pull-off force resolved to a relative %g\n", (double)s->pulloff_rtol));
   {
     PetscLogDouble total, node;
     PetscCall(AdhSolverEstimateMemory(s, &total, &node));

@@ -8,6 +8,7 @@ import signal
 import sys
 import subprocess
 
+import h5py
 import numpy as np
 import pytest
 
@@ -209,18 +210,26 @@ def test_a_write_lock_left_by_a_killed_job_does_not_hang(tmp_path):
         assert (tmp_path / f).exists() and not (tmp_path / (f + ".part")).exists()
 
 
-def test_restart_with_another_crack_closure_radius_is_refused(tmp_path):
-    """crack-closure's averaging radius shapes its answer: a restart must repeat it (and one that
-    does goes on)."""
+@pytest.mark.parametrize("changed, option", [
+    (["-adh_criterion_radius", "12"], "-adh_criterion_radius"),
+    (["-adh_attach", "penetration"], "-adh_attach"),
+    (["-adh_critical_stress", "0.5"], "-adh_critical_stress"),
+])
+def test_restart_that_changes_the_answer_is_refused(tmp_path, changed, option):
+    """What shapes the answer besides the problem (crack-closure's averaging radius, the attach
+    rule, a fixed critical stress) must be repeated by a restart, which names the option (and one
+    that repeats them goes on). The results file records them."""
     serial_only()
     ck = tmp_path / "ck.h5"
     run = [EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_criterion", "crack-closure"]
     r = subprocess.run([*run, "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
                        capture_output=True, text=True, env=ENV)
     assert r.returncode == 0, r.stderr[-2000:]
-    r = subprocess.run([*run, "-adh_criterion_radius", "12", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
+    with h5py.File(tmp_path / "a.h5", "r") as f:
+        assert f.attrs["attach"].decode() == "reach" and "critical_stress" not in f.attrs
+    r = subprocess.run([*run, *changed, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
                        capture_output=True, text=True, env=ENV)
-    assert r.returncode != 0 and "-adh_criterion_radius" in r.stderr and "-adh_restart" in r.stderr
+    assert r.returncode != 0 and option in r.stderr and "-adh_restart" in r.stderr, r.stderr[-2000:]
     assert not (tmp_path / "x.h5").exists()
     r = subprocess.run([*run, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
                        capture_output=True, text=True, env=ENV)

@@ -110,9 +110,11 @@ PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Est
 typedef struct _n_AdhSolver *AdhSolver;
 typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;
 PETSC_EXTERN const char *const AdhStarts[];
-/* When a point off the set joins it: penetration (g < 0, DESIGN.md section 4), or reach
-   (g < Sigma K_00: the gap the element closes under its own critical tension). */
-typedef enum { ADH_ATTACH_PENETRATION, ADH_ATTACH_REACH } AdhAttach;
+/* When a point off the set joins it: penetration (g < 0), reach (g < Sigma K_00: the gap the
+   element closes under its own critical tension), or griffith (crack-closure's mirror: beside the
+   contact, when the edge's energy release rate one element further out is below dgamma; reach
+   elsewhere). */
+typedef enum { ADH_ATTACH_PENETRATION, ADH_ATTACH_REACH, ADH_ATTACH_GRIFFITH } AdhAttach;
 PETSC_EXTERN const char *const AdhAttaches[];
 
 /* One recorded state: the step's result, its statistics and its cost. */
@@ -126,7 +128,12 @@ typedef struct {
   PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
   PetscInt  fft_pairs;               /* forward+backward FFT pairs of the step: compliance and preconditioner */
   PetscReal detach_ratio;            /* the detachment criterion's largest load over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
+  PetscInt  smallest_tensile_patch;  /* points of the smallest patch carrying a net tension (0: none) */
+  PetscReal small_patch_tension;     /* share of the set's tension (the sum of its p < 0) carried by patches of fewer than ADH_RESOLVED_PATCH points */
 } AdhState;
+/* A contact patch smaller than this many points (a disk under 10 elements in radius) lets go as
+   the mesh says rather than as the continuum does: its tension is not resolved by the grid. */
+#define ADH_RESOLVED_PATCH 314
 
 /* The recorded states of a path, and the columns of the curve (name, place in AdhState, whether
    it is a count), in the order of the CSV file. */
@@ -221,6 +228,10 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetState(AdhSolver, PetscReal *d, PetscReal
 /* The current state with its statistics (patches, mean gap, tension, areas), as recorded. */
 PETSC_EXTERN PetscErrorCode AdhSolverComputeState(AdhSolver, AdhState *);
 PETSC_EXTERN PetscErrorCode AdhSolverView(AdhSolver, PetscViewer);
+/* The recorded state carrying the largest tension, the pull-off force (-1: none carried tension). */
+PETSC_EXTERN PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *, PetscInt *);
+/* One line on how well the grid resolves the adhesion at that state (nothing without tension). */
+PETSC_EXTERN PetscErrorCode AdhSolverResolutionView(AdhSolver, PetscViewer);
 /* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
    every step too). Files appear whole or not at all. */
 PETSC_EXTERN PetscErrorCode AdhSolverWriteOutput(AdhSolver, const char file[]);

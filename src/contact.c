@@ -130,19 +130,40 @@ PetscErrorCode AdhSolverRestoreCriticalStress_Private(AdhSolver s, const PetscSc
   PetscFunctionReturn(0);
 }
 
-/* The gap below which an open point k joins, 0 (penetration) or under reach the gap an element
-   closes under its own critical tension, Sigma K_00; false if k cannot join (it is in the set,
-   or under reach it let go in this step: it stays off, so the step cannot cycle; where
-   Sigma = 0, reach is penetration and the point may come back). */
-static inline PetscBool AttachLimit(AdhSolver s, PetscBool reach, PetscReal K00, const PetscScalar *ta, PetscReal tu, PetscInt k, PetscReal *limit)
+/* The gap below which an open point k joins: 0 (penetration), under reach the gap an element
+   closes under its own critical tension, Sigma K_00, under griffith the limit the detach test
+   left in la; false if k cannot join (it is in the set, or with adhesion it let go in this step:
+   it stays off, so the step cannot cycle; where Sigma = 0, reach is penetration and the point may
+   come back). */
+static inline PetscBool AttachLimit(AdhSolver s, PetscBool reach, PetscReal K00, const PetscScalar *ta, PetscReal tu, const PetscScalar *la, PetscInt k, PetscReal *limit)
 {
-  *limit = reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0;
+  *limit = la ? PetscRealPart(la[k]) : reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0;
   return (PetscBool)(!s->in_set[k] && !(reach && s->left[k] && *limit > 0));
 }
 
+/* reach, or griffith (which is reach away from the contact's edge), with adhesion */
 static inline PetscBool AttachReach(AdhSolver s)
 {
-  return (PetscBool)(s->attach == ADH_ATTACH_REACH && s->adhesive);
+  return (PetscBool)((s->attach == ADH_ATTACH_REACH || s->attach == ADH_ATTACH_GRIFFITH) && s->adhesive);
+}
+
+/* griffith's limits, which the detach test just before left for the current p (NULL: not griffith) */
+static PetscErrorCode GetGriffithLimits(AdhSolver s, const PetscScalar **la)
+{
+  PetscFunctionBegin;
+  *la = NULL;
+  if (s->attach != ADH_ATTACH_GRIFFITH || !AdhSolverIsAdhesive_Private(s)) PetscFunctionReturn(0);
+  PetscCheck(s->attach_limit && s->attach_limit_current, s->comm, PETSC_ERR_PLIB, "-adh_attach griffith: the attach test without the limits of the current pressure");
+  s->attach_limit_current = PETSC_FALSE;
+  PetscCall(VecGetArrayRead(s->attach_limit, la));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreGriffithLimits(AdhSolver s, const PetscScalar **la)
+{
+  PetscFunctionBegin;
+  if (*la) PetscCall(VecRestoreArrayRead(s->attach_limit, la));
+  PetscFunctionReturn(0);
 }
 
 /* Is the attach test of the exact solution already decided by the iterate x_C of a solve with
@@ -175,7 +196,7 @@ static PetscErrorCode AttachDecided(AdhSolver s, Vec xC, PetscReal rnorm, PetscB
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   for (k = 0; k < s->nlocal; k++) {
     PetscReal limit, margin;
-    if (!AttachLimit(s, reach, K00, ta, tu, k, &limit)) continue;
+    if (!AttachLimit(s, reach, K00, ta, tu, NULL, k, &limit)) continue; /* certifiable criteria only: not griffith */
     margin = PetscRealPart(ga[k]) - limit;
     if (PetscAbsReal(margin) <= bound) {
       counts[0]++;
@@ -312,7 +333,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
    small, soft set would attach points that the load never reaches. */
 PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 {
-  const PetscScalar *ga, *ta, *ra = NULL;
+  const PetscScalar *ga, *ta, *ra = NULL, *la;
   PetscReal          tu;
   PetscInt           n, k, count = 0;
   const PetscBool    reach = AttachReach(s);
@@ -327,7 +348,8 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   if (rate) PetscCall(VecGetArrayRead(rate, &ra));
-#define LIMIT(k) (AttachLimit(s, reach, K00, ta, tu, k, &limit) ? limit : PETSC_MIN_REAL)
+  PetscCall(GetGriffithLimits(s, &la));
+#define LIMIT(k) (AttachLimit(s, reach, K00, ta, tu, la, k, &limit) ? limit : PETSC_MIN_REAL)
 #define CANDIDATE(k) (PetscRealPart(ga[k]) < LIMIT(k))
 #define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
   if (rate) {
@@ -366,6 +388,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
 #undef CANDIDATE
 #undef TOUCH
   if (rate) PetscCall(VecRestoreArrayRead(rate, &ra));
+  PetscCall(RestoreGriffithLimits(s, &la));
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));

@@ -104,8 +104,8 @@ typedef struct {
   PetscInt    gys, gym;
   VecScatter  fetch;        /* grid vector -> its rows gys..gys+gym-1 */
   Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
-  Vec         ul, hl, Gl;   /* the same over the fetched rows, and h */
-  PetscScalar **urow, **hrow, **Grow; /* their rows, indexed by global row from gys */
+  Vec         ul, hl, Gl, pl; /* the same over the fetched rows, h, and p (griffith) */
+  PetscScalar **urow, **hrow, **Grow, **prow; /* their rows, indexed by global row from gys */
   PetscInt   *seen, *queue; /* the walk along the front within the disk: offsets (2 width + 1)^2 */
   PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
 } CrackClosure;
@@ -140,9 +140,10 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   PetscCall(VecSetBlockSize(cc->ul, g->Nx));
   PetscCall(VecDuplicate(cc->ul, &cc->hl));
   PetscCall(VecDuplicate(cc->ul, &cc->Gl));
+  PetscCall(VecDuplicate(cc->ul, &cc->pl));
   PetscCall(VecScatterCreate(cc->u, from, cc->ul, NULL, &cc->fetch));
   PetscCall(ISDestroy(&from));
-  PetscCall(PetscMalloc3(cc->gym, &cc->urow, cc->gym, &cc->hrow, cc->gym, &cc->Grow));
+  PetscCall(PetscMalloc4(cc->gym, &cc->urow, cc->gym, &cc->hrow, cc->gym, &cc->Grow, cc->gym, &cc->prow));
   side = 2 * cc->width + 1;
   PetscCall(PetscCalloc2(side * side, &cc->seen, side * side, &cc->queue));
   PetscFunctionReturn(0);
@@ -265,6 +266,86 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
   PetscFunctionReturn(0);
 }
 
+/* -adh_attach griffith: the gap below which each open point joins, the mirror of the detach test,
+   for the p whose u the detach test just fetched (it let nothing go). When an open point j beside
+   the contact joins, the edge moves out by one element: j takes the tension of its set neighbour
+   i closest to the edge's inward normal, and the crack it closes had the opening g_j, so
+   G_j = -p_i g_j / 2 is the release rate of the edge one element further out. Averaged along the
+   outer front as the detach test averages along the inner one, j joins when that mean is below
+   its dgamma: when its gap is below g_j dgamma / mean. Where the neighbour is in compression, or
+   j has no set neighbour (a new asperity's first touch), the reach limit Sigma K_00 holds. A
+   point that penetrates always joins. */
+static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
+{
+  const AdhGrid      g  = s->grid;
+  const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar);
+  const PetscReal    K00  = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
+  const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  const PetscScalar *ta, **ul, **hl, **pl, **Gl;
+  PetscScalar       *Ga, *la;
+  PetscReal          tu;
+  PetscInt           ys, ym, gys = cc->gys, gym = cc->gym, i, j, a, b;
+
+  PetscFunctionBegin;
+  if (!s->attach_limit) PetscCall(VecDuplicate(s->p, &s->attach_limit));
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  PetscCall(FetchRows(cc, s->p, cc->pl));
+  PetscCall(GetRows(cc, cc->ul, cc->urow, &ul));
+  PetscCall(GetRows(cc, cc->hl, cc->hrow, &hl));
+  PetscCall(GetRows(cc, cc->pl, cc->prow, &pl));
+  PetscCall(VecGetArray(cc->G, &Ga));
+  for (j = ys; j < ys + ym; j++)
+    for (i = 0; i < g->Nx; i++) {
+      const PetscInt  k = (j - ys) * g->Nx + i, di[4] = {-1, 1, 0, 0}, dj[4] = {0, 0, -1, 1};
+      const PetscReal hj = PetscRealPart(hl[j][i]);
+      PetscReal       normal[2], best = PETSC_MAX_REAL, tension = 0.0;
+      PetscBool       beside = PETSC_FALSE;
+      Ga[k] = NAN;
+      if (s->in_set[k] || hj >= PETSC_INFINITY) continue;
+      for (PetscInt n = 0; n < 4 && !beside; n++) beside = (PetscBool)(Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) && PetscIsNanReal(PetscRealPart(ul[b][a])));
+      if (!beside) continue;
+      /* the outward normal (towards the open side), as for a front point */
+      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
+      for (PetscInt n = 0; n < 4; n++) { /* the set neighbour closest to the inward normal (ties: the more tensile) */
+        PetscReal along, p;
+        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) || !PetscIsNanReal(PetscRealPart(ul[b][a]))) continue;
+        along = di[n] * normal[0] + dj[n] * normal[1];
+        p     = PetscRealPart(pl[b][a]);
+        if (along < best || (along == best && -p > tension)) {
+          best    = along;
+          tension = -p;
+        }
+      }
+      if (tension > 0) Ga[k] = tension * (hj - s->d + PetscRealPart(ul[j][i])) / 2.0;
+    }
+  PetscCall(VecRestoreArray(cc->G, &Ga));
+  PetscCall(RestoreRows(cc->pl, cc->prow, &pl));
+  PetscCall(FetchRows(cc, cc->G, cc->Gl));
+
+  /* the mean along the outer front, against dgamma, as a limit on the gap */
+  PetscCall(GetRows(cc, cc->Gl, cc->Grow, &Gl));
+  PetscCall(VecGetArray(s->attach_limit, &la));
+  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
+  for (j = ys; j < ys + ym; j++)
+    for (i = 0; i < g->Nx; i++) {
+      const PetscInt  k = (j - ys) * g->Nx + i;
+      const PetscReal Sigma = ADH_SIGMA_AT(ta, tu, k), dgamma = chi_per_area * Sigma * Sigma;
+      PetscReal       sum, n, gap;
+      la[k] = Sigma * K00; /* reach */
+      if (s->in_set[k] || PetscIsNanReal(PetscRealPart(Gl[j][i]))) continue;
+      PetscCall(FrontMean(s, cc, wrap, gys, gym, Gl, i, j, &sum, &n));
+      gap   = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
+      la[k] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
+    }
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
+  PetscCall(VecRestoreArray(s->attach_limit, &la));
+  PetscCall(RestoreRows(cc->Gl, cc->Grow, &Gl));
+  PetscCall(RestoreRows(cc->hl, cc->hrow, &hl));
+  PetscCall(RestoreRows(cc->ul, cc->urow, &ul));
+  s->attach_limit_current = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* The release rate of every front point (pass 1), averaged over the front points within the radius
    (pass 2), against dgamma; under detach, removal where either rule says so. The gap of the
    current p is left in s->g. */
@@ -370,6 +451,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
   if (removed) {
     PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
     s->gap_current = (PetscBool)(*removed == 0); /* p unchanged: the attach test takes this gap */
+    if (!*removed && s->attach == ADH_ATTACH_GRIFFITH && AdhSolverIsAdhesive_Private(s)) PetscCall(GriffithLimits(s, cc));
   }
   if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
   PetscFunctionReturn(0);
@@ -385,8 +467,9 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(VecDestroy(&cc->ul));
   PetscCall(VecDestroy(&cc->hl));
   PetscCall(VecDestroy(&cc->Gl));
+  PetscCall(VecDestroy(&cc->pl));
   PetscCall(VecScatterDestroy(&cc->fetch));
-  PetscCall(PetscFree3(cc->urow, cc->hrow, cc->Grow));
+  PetscCall(PetscFree4(cc->urow, cc->hrow, cc->Grow, cc->prow));
   PetscCall(PetscFree2(cc->seen, cc->queue));
   PetscCall(PetscFree(s->crdata));
   PetscFunctionReturn(0);
@@ -465,7 +548,8 @@ PetscErrorCode AdhSolverGetCriterionType(AdhSolver s, AdhCriterionType *type)
 PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
 {
   PetscFunctionBegin;
-  s->gap_current = PETSC_FALSE;
+  s->gap_current          = PETSC_FALSE;
+  s->attach_limit_current = PETSC_FALSE;
   PetscCall(s->crops.evaluate(s, PETSC_TRUE, removed, NULL));
   PetscFunctionReturn(0);
 }

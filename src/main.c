@@ -71,6 +71,7 @@ static PetscErrorCode Run(AdhSolver solver)
     }
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults, ffts));
   }
+  PetscCall(AdhSolverResolutionView(solver, NULL));
   PetscFunctionReturn(0);
 }
 

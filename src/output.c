@@ -225,9 +225,11 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscInt      maxits;
   KSPType       ksptype;
   PetscReal     pull_off = 0.0; /* the largest tension carried, -min F (0: none) */
+  PetscInt      k;
 
   PetscFunctionBegin;
-  for (PetscInt k = 0; k < s->curve.n; k++) pull_off = PetscMax(pull_off, -s->curve.state[k].force);
+  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
+  if (k >= 0) pull_off = -s->curve.state[k].force;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   nranks = size;
   PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
@@ -256,6 +258,12 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion", PETSC_STRING, s->criterion_type));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius", PETSC_REAL, &s->criterion_radius));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
+  if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
+  if (k >= 0) { /* how well the grid resolves it (the curve's statistics at that state) */
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_small_patch_tension", PETSC_REAL, &s->curve.state[k].small_patch_tension));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_smallest_tensile_patch", PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "adhesion_resolved", PETSC_BOOL, &(PetscBool){AdhSolverResolves_Private(s, &s->curve.state[k])}));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));

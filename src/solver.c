@@ -3,7 +3,7 @@
 #include "solverimpl.h"
 
 const char *const AdhStarts[]   = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
-const char *const AdhAttaches[] = {"penetration", "reach", "AdhAttach", "ADH_ATTACH_", NULL};
+const char *const AdhAttaches[] = {"penetration", "reach", "griffith", "AdhAttach", "ADH_ATTACH_", NULL};
 
 PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
 {
@@ -41,7 +41,8 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscCall(AdhGridCreate(comm, &s->grid));
   s->grid->fftw_timelimit = 0.01; /* free boundary: many windows to plan, few whole-grid multiplies */
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
-  PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONPOHRTPOPOV));
+  PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONCRACKCLOSURE)); /* within 2% in every edge direction; the paper's rule is one option away */
+  s->attach = ADH_ATTACH_REACH; /* the JKR jump-in and loading branch (penetration stays Hertz-like) */
   s->predictor_rtol   = 1e-8;
   s->predictor_max_it = 10000;
   s->predictor_fourier = PETSC_TRUE;
@@ -111,7 +112,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
   PetscCall(AdhCriterionGetList_Private(&criteria));
-  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: pohrt-popov (the paper, p < -Sigma) or crack-closure (edge energy release rate > dgamma)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
+  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
   PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
@@ -131,7 +132,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   }
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
-  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: penetration (g < 0) or reach (g < Sigma K_00)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
+  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: reach (its gap is below Sigma K_00, the gap it closes under its own critical tension: the JKR jump-in; the default), griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
   PetscCall(AdhPredictorGetList_Private(&predictors));
   PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
@@ -270,6 +271,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(VecSum(s->h, &sum));
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+  PetscCall(AdhSolverEstimateResolution_Private(s));
   PetscCall(AdhSolverClearContact_Private(s));
   PetscCall(VecCopy(s->h, s->g)); /* the undeformed gap, g = h - d */
   PetscCall(VecShift(s->g, -s->d));
@@ -290,6 +292,11 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     if (s->boundary == ADH_BOUNDARY_PERIODIC) s->grid->fftw_timelimit = -1.0;
     /* The predictor transforms the whole grid; on a free boundary the loop's bounding-box
        windows cost less (Hertz 256^2: 0.5 s against 3.1 s), so it is used there only if asked. */
+    {
+      PetscBool cc;
+      PetscCall(PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
+      PetscCheck(cc || s->attach != ADH_ATTACH_GRIFFITH, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach griffith is the mirror of -adh_criterion crack-closure's detachment test; with -adh_criterion %s use -adh_attach reach or penetration", s->criterion_type);
+    }
     if (!s->predictor_chosen && s->boundary == ADH_BOUNDARY_FREE) {
       PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORNONE));
       s->predictor_chosen = PETSC_FALSE;
@@ -400,6 +407,7 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));
   if (s->force_control) PetscCall(PetscViewerASCIIPrintf(viewer, "pull-off force resolved to a relative %g\n", (double)s->pulloff_rtol));
+  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "JKR contact radius of the smallest asperities (estimate) over the grid spacing: %g\n", (double)s->asperity_ac));
   {
     PetscLogDouble total, node;
     PetscCall(AdhSolverEstimateMemory(s, &total, &node));
@@ -419,6 +427,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(PetscFree(s->field_states));
+  PetscCall(VecDestroy(&s->attach_limit));
   PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));
   PetscCall(MatDestroy(&s->Kcc));

@@ -95,12 +95,15 @@ struct _n_AdhSolver {
   void           *crdata;
   PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
+  PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
   char     *left;             /* points that let go during the current step */
   PetscInt  nlocal;
   AdhAttach attach;
+  Vec       attach_limit;      /* griffith: the gap below which each open point joins, from the last detach test */
+  PetscBool attach_limit_current; /* it belongs to the current p (the detach test just before let nothing go) */
   IS        contact;
   PetscInt  npoints;          /* global size of the set */
   KSP       ksp;
@@ -209,6 +212,8 @@ PETSC_INTERN PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhControlGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
+PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
+PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
 PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);

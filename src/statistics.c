@@ -1,10 +1,18 @@
 /* Statistics of a contact state, recorded per step in the curve: contact patches, mean gap,
-   largest tension over the critical stress, and the areas in tension and in compression.
+   largest tension over the critical stress, the areas in tension and in compression, and how well
+   the grid resolves the patches that carry tension.
 
    Patches are the connected clusters of the contact set with edge neighbours (4-connectivity),
    wrapping across the edges of a periodic cell. Each rank labels the clusters of its own rows
    with a union-find; rank 0 then joins the labels that touch across rank boundaries (and across
-   the periodic seam), from the first and last row of every rank only. O(N) work per step. */
+   the periodic seam), from the first and last row of every rank only, and sums each patch's
+   points, force and tension from its pieces. O(N) work per step.
+
+   Resolution: a detachment criterion converges with the grid only where the contact edge is long
+   on the scale of an element. A patch of a few elements lets go at a load the mesh sets (on a
+   rough surface the last asperity contacts before pull-off are such patches when their JKR
+   radius is near one element), so the share of the tension carried by patches of fewer than
+   ADH_RESOLVED_PATCH points says how much of the adhesive force the grid does not resolve. */
 #include "solverimpl.h"
 
 static PetscInt Find(PetscInt *parent, PetscInt a)
@@ -24,14 +32,21 @@ static PetscInt Union(PetscInt *parent, PetscInt a, PetscInt b)
   return 1;
 }
 
-static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
+/* What a patch holds: its points, its force sum(p) and its tension sum(min(p, 0)). */
+#define ADH_PATCH_SUMS 3
+
+/* The patches of the set: their number, the points of the smallest one carrying a net tension, and
+   the share of the tension in patches of fewer than ADH_RESOLVED_PATCH points. */
+static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
 {
-  const PetscInt  Nx = s->grid->Nx, n = s->nlocal, ym = n / Nx;
-  const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscInt       *parent, *label, *edges = NULL, *all = NULL, *counts = NULL, *offset = NULL;
-  PetscInt       *first, *rowa, *rowb, *prev, *cur, *swap;
-  PetscInt        k, i, j, local = 0, total, merged = 0, nset = 0;
-  PetscMPIInt     rank, size;
+  const PetscInt     Nx = s->grid->Nx, n = s->nlocal, ym = n / Nx;
+  const PetscBool    periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  PetscInt          *parent, *label, *edges = NULL, *all = NULL, *counts = NULL, *offset = NULL;
+  PetscInt          *first, *rowa, *rowb, *prev, *cur, *swap;
+  PetscInt           k, i, j, local = 0, total, merged = 0, nset = 0, result[2] = {0, 0};
+  PetscReal         *sums, *allsums = NULL, small[2] = {0.0, 0.0};
+  const PetscScalar *pa;
+  PetscMPIInt        rank, size, *rcounts = NULL, *displs = NULL;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
@@ -58,6 +73,19 @@ static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
   /* after the loop, prev holds the last row. Local cluster numbers 0 .. local-1 at the roots. */
   for (k = 0; k < nset; k++)
     if (Find(parent, k) == k) label[k] = local++;
+  /* each local cluster's sums */
+  PetscCall(PetscCalloc1(ADH_PATCH_SUMS * local + 1, &sums));
+  PetscCall(VecGetArrayRead(s->p, &pa));
+  for (j = 0, k = 0; j < n; j++) {
+    const PetscReal p = PetscRealPart(pa[j]);
+    PetscReal      *c;
+    if (!s->in_set[j]) continue;
+    c = sums + ADH_PATCH_SUMS * label[Find(parent, k++)];
+    c[0] += 1.0;
+    c[1] += p;
+    c[2] += PetscMin(p, 0.0);
+  }
+  PetscCall(VecRestoreArrayRead(s->p, &pa));
 
   /* This rank's cluster count, then the labels of its first and last row (-1: not in the set). */
   PetscCall(PetscMalloc1(2 * Nx + 1, &edges));
@@ -68,6 +96,16 @@ static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
   }
   if (!rank) PetscCall(PetscMalloc1((2 * Nx + 1) * size, &all));
   PetscCallMPI(MPI_Gather(edges, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, all, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, 0, s->comm));
+  if (!rank) {
+    PetscCall(PetscMalloc2(size, &rcounts, size, &displs));
+    for (PetscMPIInt r = 0, at = 0; r < size; r++) {
+      PetscCall(PetscMPIIntCast(ADH_PATCH_SUMS * all[r * (2 * Nx + 1)], &rcounts[r]));
+      displs[r] = at;
+      at += rcounts[r];
+    }
+    PetscCall(PetscMalloc1(displs[size - 1] + rcounts[size - 1] + 1, &allsums));
+  }
+  PetscCallMPI(MPI_Gatherv(sums, (PetscMPIInt)(ADH_PATCH_SUMS * local), MPIU_REAL, allsums, rcounts, displs, MPIU_REAL, 0, s->comm));
   if (!rank) {
     PetscInt *gparent;
     PetscCall(PetscMalloc2(size, &counts, size + 1, &offset));
@@ -88,12 +126,32 @@ static PetscErrorCode CountPatches(AdhSolver s, PetscInt *patches)
       for (i = 0; i < Nx; i++)
         if (last[i] >= 0 && first[i] >= 0) merged += Union(gparent, offset[r] + last[i], offset[next] + first[i]);
     }
-    *patches = total - merged;
+    result[0] = total - merged;
+    /* each patch's sums at its root (the pieces are numbered as the gathered sums are laid out) */
+    for (k = 0; k < total; k++) {
+      const PetscInt root = Find(gparent, k);
+      if (root == k) continue;
+      for (PetscInt c = 0; c < ADH_PATCH_SUMS; c++) allsums[ADH_PATCH_SUMS * root + c] += allsums[ADH_PATCH_SUMS * k + c];
+    }
+    for (k = 0; k < total; k++) {
+      const PetscReal *c = allsums + ADH_PATCH_SUMS * k;
+      if (Find(gparent, k) != k) continue;
+      small[1] += c[2];
+      if (c[0] < ADH_RESOLVED_PATCH) small[0] += c[2];
+      if (c[1] < 0 && (!result[1] || c[0] < result[1])) result[1] = (PetscInt)c[0];
+    }
     PetscCall(PetscFree(gparent));
     PetscCall(PetscFree2(counts, offset));
+    PetscCall(PetscFree2(rcounts, displs));
+    PetscCall(PetscFree(allsums));
     PetscCall(PetscFree(all));
   }
-  PetscCallMPI(MPI_Bcast(patches, 1, MPIU_INT, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(result, 2, MPIU_INT, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(small, 2, MPIU_REAL, 0, s->comm));
+  st->patches                = result[0];
+  st->smallest_tensile_patch = result[1];
+  st->small_patch_tension    = small[1] < 0 ? PetscMax(0.0, small[0] / small[1]) : 0.0; /* not -0 */
+  PetscCall(PetscFree(sums));
   PetscCall(PetscFree(edges));
   PetscCall(PetscFree2(parent, label));
   PetscCall(PetscFree3(first, rowa, rowb));
@@ -109,7 +167,7 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscInt           k, count[2] = {0, 0};
 
   PetscFunctionBegin;
-  PetscCall(CountPatches(s, &st->patches));
+  PetscCall(CountPatches(s, st));
   PetscCall(VecSum(s->g, &gsum));
   st->mean_gap = PetscRealPart(gsum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   PetscCall(VecGetArrayRead(s->p, &pa));

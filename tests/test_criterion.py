@@ -128,6 +128,9 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
                   start="hertz", path=[0.5 * D, -0.3 * D], steps=8),
              dict(n=N, size=float(N), gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
                   attach="reach", hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7, path=[0.0, 0.3, -0.3],
+                  steps=4),
+             dict(n=N, size=float(N), gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
+                  attach="griffith", hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7, path=[0.0, 0.3, -0.3],
                   steps=4)]
     # a one-row groove across a sphere at the rank boundaries of 2 and 3 ranks, with a radius below
     # the ghost rows' least width: the edge's normal looks three rows away and the walk along the
@@ -160,6 +163,7 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
 @pytest.mark.parametrize("args, says", [
     (["-adh_criterion", "griffith"], "-adh_criterion"),
     (["-adh_criterion", "crack-closure", "-adh_criterion_radius", "0.5"], "-adh_criterion_radius"),
+    (["-adh_criterion", "pohrt-popov", "-adh_attach", "griffith"], "-adh_attach griffith"),
 ])
 def test_bad_criterion_options(tmp_path, args, says):
     serial_only()

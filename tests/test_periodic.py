@@ -181,7 +181,8 @@ def test_certified_stop_periodic():
     N = 64
     z = random_heights(N)
     h = z.max() - z
-    opts = dict(n=N, size=1.0, E_star=E, gamma=2e-4, boundary="periodic", start="hertz",
+    # the paper's criterion: the certified stop bounds p, and crack-closure's openings move with p
+    opts = dict(n=N, size=1.0, E_star=E, gamma=2e-4, boundary="periodic", start="hertz", criterion="pohrt-popov",
                 topography=z, topography_kind="height", path=[0.25 * h.mean(), 0.6 * h.mean(), -0.02 * h.mean()], steps=8)
     t0 = time.perf_counter()
     on = adhbem.Solver(certify=True, **opts).solve_path()
@@ -208,7 +209,7 @@ def test_certified_attach_same_sets(tmp_path):
     base = [EXE, "-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_hurst", "0.8",
             "-adh_rms_slope", "0.1", "-adh_seed", "3", "-adh_boundary", "periodic", "-adh_gamma", "0.004",
             "-adh_start", "adhesive", "-adh_attach", "reach", "-adh_path", "0,0.6,-0.4", "-adh_steps", "8",
-            "-adh_fields", "contact"]
+            "-adh_fields", "contact", "-adh_criterion", "pohrt-popov"]  # certifiable: decided by p alone
     runs = {}
     for certify in (1, 0):
         out = tmp_path / f"c{certify}.h5"
@@ -279,7 +280,7 @@ def test_jkr_periodic_against_free():
     F0 = 4.0 / 3.0 * E * (1.3 * ac) ** 3 / R
     targets = np.linspace(F0, -1.2 * Fadh, 21)
     opts = dict(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz", control="force",
-                path=[F0, -1.2 * Fadh], steps=20)
+                path=[F0, -1.2 * Fadh], steps=20, criterion="pohrt-popov", attach="penetration")
     t0 = time.perf_counter()
     sf = adhbem.Solver(**opts)
     sp = adhbem.Solver(boundary="periodic", **opts)

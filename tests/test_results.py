@@ -54,8 +54,10 @@ def test_plot_every_indenter_and_boundary(tmp_path, name):
 
 def test_load_gives_the_curve_and_the_fields(tmp_path):
     serial_only()
-    out = run(tmp_path, "sphere", CASES["sphere"])
-    s = adhbem.Solver(n=32, indenter="sphere", gamma=1e-3, path=[0.01, -0.004], steps=4)
+    # the file of this very solver: another process's FFTW plans (and this one's wisdom from earlier
+    # tests) may differ from it in the last bits
+    out = tmp_path / "sphere.h5"
+    s = adhbem.Solver(n=32, indenter="sphere", gamma=1e-3, path=[0.01, -0.004], steps=4, fields="all", output=str(out))
     c = s.solve_path()
     with adhbem.load(out) as r:
         for key in ("d", "force", "contact_points", "patches", "detach_ratio"):

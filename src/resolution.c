@@ -1,0 +1,81 @@
+/* How well the grid resolves the adhesion, told to the user: at set-up an estimate of the JKR
+   contact radius of the smallest asperities in grid spacings, and at the end of a run the share of
+   the tension at pull-off carried by contact patches too small to be resolved (statistics.c
+   measures it per state).
+
+   The estimate: a summit of tip radius R with work of adhesion dgamma has the JKR contact radius
+   a_c = (9 pi dgamma R^2 / (8 E*))^(1/3) at pull-off, and a detachment criterion converges with
+   the grid only where a_c spans many elements. On a periodic cell R is the mean summit radius of
+   a Gaussian isotropic surface (Nayak 1971, wide band): its mean summit curvature is
+   sqrt(8 / (3 pi)) times the rms of the Laplacian of h, which the periodic stiffness gives
+   exactly on mean-free h (S S h = -(E* / 2)^2 Lap h). On a free boundary only the sphere has one radius. */
+#include "solverimpl.h"
+
+PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
+{
+  PetscReal dgamma = s->gamma, R = 0.0, h = PetscMin(s->grid->hx, s->grid->hy);
+
+  PetscFunctionBegin;
+  s->asperity_ac = 0.0;
+  if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &dgamma));
+  if (!(dgamma > 0) || s->sigma_fixed > 0) PetscFunctionReturn(0);
+  if (s->boundary == ADH_BOUNDARY_PERIODIC && s->S) {
+    Vec       a, b;
+    PetscReal norm, lap;
+    PetscCall(VecDuplicate(s->h, &a));
+    PetscCall(VecDuplicate(s->h, &b));
+    PetscCall(VecCopy(s->h, b));
+    PetscCall(VecShift(b, -s->mean_h)); /* S keeps the mean mode (positive definite) */
+    PetscCall(MatMult(s->S, b, a));
+    PetscCall(MatMult(s->S, a, b));
+    PetscCall(VecNorm(b, NORM_2, &norm));
+    lap = norm * 4.0 / (s->Estar * s->Estar) / PetscSqrtReal((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+    if (lap > 0) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * lap);
+    PetscCall(VecDestroy(&a));
+    PetscCall(VecDestroy(&b));
+  } else if (s->boundary == ADH_BOUNDARY_FREE && s->indenter.type == ADH_INDENTER_SPHERE) R = s->indenter.radius;
+  if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * s->Estar), 1.0 / 3.0) / h;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
+{
+  PetscFunctionBegin;
+  *state = -1;
+  for (PetscInt k = 0; k < c->n; k++)
+    if (c->state[k].force < 0 && (*state < 0 || c->state[k].force < c->state[*state].force)) *state = k;
+  PetscFunctionReturn(0);
+}
+
+/* Resolved: at most this share of the tension at pull-off sits in patches smaller than
+   ADH_RESOLVED_PATCH points, and the smallest asperities' JKR radius spans at least
+   ADH_RESOLVED_RADIUS elements. */
+#define ADH_RESOLVED_SHARE  0.1
+#define ADH_RESOLVED_RADIUS 10
+
+/* Whether the grid resolves the adhesion at state st: the patches that carry the tension are large,
+   and so are the smallest asperities' contacts. */
+PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
+{
+  return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS));
+}
+
+PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
+{
+  PetscInt        k;
+  const AdhState *st;
+  char            smallest[96];
+  PetscBool       resolved;
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->boundary == ADH_BOUNDARY_FREE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)s->asperity_ac, s->asperity_ac < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off depends on the grid)" : ""));
+  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
+  if (k < 0) PetscFunctionReturn(0);
+  st = &s->curve.state[k];
+  smallest[0] = 0;
+  if (st->smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, st->smallest_tensile_patch));
+  resolved = AdhSolverResolves_Private(s, st);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", k, (double)st->force, 100.0 * (double)st->small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, resolved ? "the grid resolves the adhesion" : "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes"));
+  PetscFunctionReturn(0);
+}

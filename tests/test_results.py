@@ -1,6 +1,6 @@
 """adhbem.load (the results file as NumPy arrays, fields read lazily) and python3 -m adhbem.plot
 (curves against the analytic solution where there is one, area against force, contact maps),
-on the output of every indenter and both boundaries."""
+on the output of every indenter and both boundaries; both work without petsc4py."""
 import subprocess
 import sys
 
@@ -81,3 +81,52 @@ def test_plot_of_a_missing_file_says_so(tmp_path):
     serial_only()
     r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(tmp_path / "none.h5")], capture_output=True, text=True, env=python_env())
     assert r.returncode == 1 and "none.h5" in r.stderr and "Traceback" not in r.stderr
+
+
+# A Python without PETSc (a laptop that reads results): petsc4py, mpi4py and adhbem's C extension
+# cannot be imported in it.
+WITHOUT_PETSC = """
+import importlib.abc, runpy, sys
+
+class Blocked(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("petsc4py", "mpi4py") or name == "adhbem._adhbem":
+            raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+        return None
+
+sys.meta_path.insert(0, Blocked())
+results, png = sys.argv[1:]
+
+import adhbem
+with adhbem.load(results) as r:
+    assert r.params["indenter"] == "sphere" and len(r.curve["d"]) > 2, r.params
+    assert r.field("pressure", -1).shape == (32, 32)
+try:
+    adhbem.Solver
+    raise AssertionError("adhbem.Solver without petsc4py")
+except ImportError as e:
+    assert "petsc4py" in str(e) and "adhbem.load" in str(e), e
+
+sys.argv = ["python3 -m adhbem.plot", results, "--out", png]
+try:
+    runpy.run_module("adhbem.plot", run_name="__main__", alter_sys=True)
+except SystemExit as e:
+    assert e.code == 0, e.code
+loaded = [m for m in sys.modules if m.split(".")[0] in ("petsc4py", "mpi4py") or m == "adhbem._adhbem"]
+assert not loaded, loaded
+print("read and plotted without PETSc")
+"""
+
+
+def test_load_and_plot_without_petsc4py(tmp_path):
+    serial_only()
+    out = run(tmp_path, "sphere", CASES["sphere"])
+    png = tmp_path / "laptop.png"
+    r = subprocess.run([sys.executable, "-c", WITHOUT_PETSC, str(out), str(png)], capture_output=True, text=True,
+                       env=python_env(), timeout=120)
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert "read and plotted without PETSc" in r.stdout and png.stat().st_size > 10000
+    # and where petsc4py is installed, import adhbem alone does not start PETSc either
+    r = subprocess.run([sys.executable, "-c", "import sys, adhbem; print(sorted(m for m in sys.modules if 'petsc' in m))"],
+                       capture_output=True, text=True, env=python_env(), timeout=60)
+    assert r.returncode == 0 and r.stdout.strip() == "[]", r.stdout + r.stderr[-2000:]

@@ -48,8 +48,17 @@ __all__ = ["PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_
            "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
 
 
+def _is_sequence(value):
+    """A list, tuple, NumPy array or other sequence of values (not a string, not a 0-d array)."""
+    import numpy as np
+    if isinstance(value, (str, bytes, os.PathLike)):
+        return False
+    return np.ndim(value) > 0
+
+
 def _pair(value, name):
-    if isinstance(value, (tuple, list)):
+    if _is_sequence(value):
+        value = list(value)
         if len(value) != 2:
             raise ValueError(f"{name}: give one value or two (x, y), got {value!r}")
         return value[0], value[1]
@@ -173,12 +182,20 @@ _solver_count = 0
 
 
 def _option_value(value):
-    if isinstance(value, bool):
+    """The option's text: a sequence (list, tuple, NumPy array) as comma-separated values, a real
+    number with all its digits."""
+    import numbers
+    import numpy as np
+    if _is_sequence(value):
+        return ",".join(_option_value(v) for v in np.asarray(value, dtype=object).ravel())
+    if isinstance(value, np.ndarray):  # 0-d
+        value = value.item()
+    if isinstance(value, (bool, np.bool_)):
         return "1" if value else "0"
-    if isinstance(value, (tuple, list)):
-        return ",".join(repr(float(v)) if isinstance(v, float) else str(v) for v in value)
-    if isinstance(value, float):
-        return repr(value)
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
     return str(value)
 
 

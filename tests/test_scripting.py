@@ -1,4 +1,6 @@
-"""The Python Solver as scripts use it: options from any sequence or NumPy array. Tests marked
+"""The Python Solver as scripts use it: options from any sequence or NumPy array, manual start()
+and step() recorded in the curve (and in write()'s file), every state's fields during a path
+(iterate_path() and monitors) the same as solve_path()'s, and the pull-off force. Tests marked
 `mpi` assert on values every rank has."""
 import os
 
@@ -38,3 +40,78 @@ def test_options_from_arrays_and_sequences():
     # a grid as an array too, and NumPy scalars
     c = adhbem.Solver(**dict(OPTS, n=np.array([32, 32]), steps=np.int64(6), gamma=np.float64(1e-3)), path=np.array(PATH)).solve_path()
     assert same_curve(c, listed)
+
+
+@pytest.mark.mpi
+def test_manual_steps_are_recorded(tmp):
+    s = adhbem.Solver(path=PATH, **OPTS)
+    seen = []
+    s.monitor(lambda row, state: seen.append((row, state["d"])))
+    states = [s.start(0.01), s.step(0.015), s.step(0.02), s.step(0.01)]
+    c = s.curve()
+    assert len(c["d"]) == 4 and seen == [(k, st["d"]) for k, st in enumerate(states)]
+    for k, st in enumerate(states):
+        assert all(c[key][k] == st[key] for key in st), k
+    assert np.all(c["seconds"] > 0)
+    out = os.path.join(tmp, "manual.h5")
+    s.write(out)
+    with adhbem.load(out) as r:
+        assert np.array_equal(r.curve["d"], [0.01, 0.015, 0.02, 0.01])
+        assert np.array_equal(r.curve["force"], c["force"])
+    # start() begins a new curve, as a path does
+    s.start(0.005)
+    assert np.array_equal(s.curve()["d"], [0.005])
+
+
+@pytest.mark.mpi
+def test_iterate_path_gives_every_state_of_solve_path(tmp):
+    """iterate_path() takes the states solve_path() takes, to the last bit, with the fields of each
+    current in the loop: the pressure a monitor of solve_path() sees, and the results file's."""
+    ref = adhbem.Solver(path=PATH, fields="pressure", output=os.path.join(tmp, "path.h5"), **OPTS)
+    monitored = []
+    ref.monitor(lambda row, state: monitored.append(adhbem.gather(ref.pressure, ref.compliance)))
+    c_ref = ref.solve_path()
+    assert c_ref["pulled_off"][-1] == 1 and len(c_ref["d"]) < 1 + 2 * OPTS["steps"]
+    # after the path only the pulled-off state is left: nothing in contact
+    assert ref.contact_set.getSize() == 0 and adhbem.gather(ref.pressure, ref.compliance).max() == 0
+
+    s = adhbem.Solver(path=PATH, **OPTS)
+    iterated = [(state, adhbem.gather(s.pressure, s.compliance)) for state in s.iterate_path()]
+    c = s.curve()
+    assert same_curve(c, c_ref)
+    assert len(iterated) == len(monitored) == len(c["d"])
+    with adhbem.load(os.path.join(tmp, "path.h5")) as r:
+        for row, ((state, p), q) in enumerate(zip(iterated, monitored)):
+            assert state["d"] == c["d"][row] and np.array_equal(p, q) and np.array_equal(p, r.field("pressure", row)), row
+    # the largest load compresses, the largest tension pulls
+    assert iterated[int(np.argmax(c["d"]))][1].max() > 0 and iterated[int(np.argmin(c["force"]))][1].min() < 0
+
+    # a break ends the path there; the curve has the states taken
+    s = adhbem.Solver(path=PATH, **OPTS)
+    for k, state in enumerate(s.iterate_path()):
+        if k == 3:
+            break
+    assert same_curve({key: v[:4] for key, v in c_ref.items()}, s.curve())
+
+
+def test_iterate_path_writes_no_file_as_it_goes(tmp_path):
+    s = adhbem.Solver(path=PATH, output=str(tmp_path / "x.h5"), **OPTS)
+    with pytest.raises(ValueError, match="option 'output' is solve_path"):
+        next(s.iterate_path())
+
+
+@pytest.mark.mpi
+def test_pull_off_force(tmp):
+    s = adhbem.Solver(path=PATH, **OPTS)
+    assert s.pull_off_force == 0.0  # no curve yet
+    c = s.solve_path()
+    assert s.pull_off_force == -c["force"].min() > 0
+    # JKR's 1.5 pi dgamma R, with the criterion's error on this coarse grid
+    assert abs(s.pull_off_force / (1.5 * np.pi * OPTS["gamma"]) - 1) < 0.3
+    out = os.path.join(tmp, "pulloff.h5")
+    s.write(out)
+    with adhbem.load(out) as r:
+        assert r.params["pull_off_force"] == s.pull_off_force == r.pull_off_force
+    hertz = adhbem.Solver(path=[0.0, 0.01], **dict(OPTS, gamma=0.0))
+    hertz.solve_path()
+    assert hertz.pull_off_force == 0.0

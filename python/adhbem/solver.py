@@ -214,8 +214,12 @@ class Solver:
     at d = 0); ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the
     indenter "array".
 
-    After ``solve_path()`` (or ``start(d)`` / ``step(d)``), ``curve()`` gives NumPy arrays and
-    ``pressure``, ``displacement``, ``gap``, ``contact_set``, ``compliance`` are petsc4py objects.
+    The fields (``pressure``, ``displacement``, ``gap``, ``contact_set``: petsc4py objects) are
+    those of the current state: read them inside ``for state in s.iterate_path():`` or a
+    ``monitor(fn)`` to have every state's; after ``solve_path()`` they are the last state's (at
+    pull-off: nothing in contact). ``curve()`` gives the recorded states as NumPy arrays, from
+    ``solve_path()``, ``iterate_path()`` or ``start(d)`` and ``step(d)``; ``pull_off_force`` the
+    largest tension carried.
     """
 
     def __init__(self, comm=None, topography=None, topography_kind=None, gamma_field=None, **options):
@@ -266,6 +270,7 @@ class Solver:
         comm = PETSc.COMM_WORLD if comm is None else comm
         if not isinstance(comm, PETSc.Comm):
             comm = PETSc.Comm(comm)
+        self._options = dict(options)
         opts = PETSc.Options()
         self._keys = []
         for key, value in options.items():
@@ -293,27 +298,64 @@ class Solver:
         self._forget_options()
 
     def start(self, d):
-        """The starting state at indentation d (hertz or adhesive, option start)."""
+        """The starting state at indentation d (a force under control="force"; hertz or adhesive,
+        option start): the first row of a new curve. Returns the state as a dict of the curve's
+        columns."""
         return _adhbem.solver_start(self._s, float(d))
 
     def step(self, d):
-        """One step to indentation d (a force under control="force") from the current contact set;
-        returns the state as a dict of the curve's columns (seconds is 0: only paths time steps)."""
+        """One step to indentation d (a force under control="force") from the current contact set,
+        appended to the curve; returns the state as a dict of the curve's columns."""
         return _adhbem.solver_step(self._s, float(d))
 
     def state(self):
+        """The current state as a dict of the curve's columns (not recorded)."""
         return _adhbem.solver_state(self._s)
 
     def solve_path(self):
-        """Runs the option path and returns the curve."""
+        """Runs the option path and returns the curve. With option output, writes the results file
+        (and the fields of its states with option fields)."""
         _adhbem.solver_solve_path(self._s)
         return self.curve()
 
+    def iterate_path(self):
+        """Runs the option path as solve_path() does, a state at a time: yields each state (a dict of
+        the curve's columns) with the solver's fields current, on every rank, and appends it to the
+        curve. All ranks must take the same states (a break on one rank only leaves the others
+        waiting). It writes no results file as it goes: write(FILE) after the loop writes the curve
+        and the last state's fields, and options output, checkpoint and restart are solve_path()'s.
+
+            for state in s.iterate_path():
+                p = adhbem.gather(s.pressure, s.compliance)   # this state's pressure
+        """
+        for name in ("output", "checkpoint", "restart"):
+            if name in self._options:
+                raise ValueError(f"iterate_path: option {name!r} is solve_path()'s (iterate_path writes no file as it goes; "
+                                 "call write(FILE) after the loop)")
+        path, steps = _adhbem.solver_path(self._s)
+        yield self.start(path[0])
+        for a, b in zip(path[:-1], path[1:]):
+            for k in range(1, steps + 1):
+                # the targets of solve_path, to the last bit
+                state = self.step(a + (b - a) * k / steps)
+                yield state
+                if state["pulled_off"]:
+                    break  # the rest of this leg has nothing in contact
+
     def monitor(self, fn):
-        """Calls fn(step, state) on every rank after each recorded state of solve_path(); state is a
-        dict of the curve's columns. The solver's fields (pressure, contact_set, ...) are current
-        inside fn, so it can gather or save them."""
+        """Calls fn(step, state) on every rank after each recorded state (of solve_path(),
+        iterate_path(), start() and step()); step is the curve row, state a dict of the curve's
+        columns. The solver's fields (pressure, contact_set, ...) are current inside fn, so it can
+        gather or save them."""
         _adhbem.solver_monitor(self._s, fn)
+
+    @property
+    def pull_off_force(self):
+        """The largest tension carried over the curve, -min(force), or 0 without tension: the
+        pull_off_force of the results file. Under displacement control the state that ends a leg
+        by pull-off (pulled_off = 1) carries less: the contact has let go there."""
+        F = self.curve()["force"]
+        return max(0.0, -float(F.min())) if len(F) else 0.0
 
     def contact_mask(self):
         """A new Vec on the grid: 1 on the points of the contact set, 0 elsewhere."""
@@ -332,7 +374,8 @@ class Solver:
         return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
 
     def write(self, file):
-        """Writes the curve (and, with option fields, the current fields) to file and its CSV."""
+        """Writes the curve (and, with option fields, the current fields, as those of the last row)
+        to file and its CSV."""
         _adhbem.solver_write(self._s, str(file))
 
     def view(self):

@@ -9,6 +9,7 @@ all ``Nx`` points of each, so a local array has shape ``(rows, Nx)`` and index `
 import importlib.util
 import os
 import sys
+import time
 
 import adhbem_build
 import petsc4py
@@ -169,6 +170,11 @@ def set_local_rows(vec, obj, array):
     vec.getArray()[:] = array.ravel()
 
 
+def _min():
+    from mpi4py import MPI
+    return MPI.MIN
+
+
 def gather(vec, obj):
     """The whole field as an (Ny, Nx) NumPy array on every rank (for small grids and tests)."""
     import numpy as np
@@ -212,7 +218,7 @@ class Solver:
     a Vec on the grid: ``Solver(n=(Nx, Ny), topography=z, topography_kind="height",
     gamma_field=g)``. A height map z gives the profile h = max(z) - z (the highest peak touches
     at d = 0); ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the
-    indenter "array".
+    indenter "array"; the results files it writes hold it as ``/topography``.
 
     The fields (``pressure``, ``displacement``, ``gap``, ``contact_set``: petsc4py objects) are
     those of the current state: read them inside ``for state in s.iterate_path():`` or a
@@ -224,6 +230,7 @@ class Solver:
 
     def __init__(self, comm=None, topography=None, topography_kind=None, gamma_field=None, **options):
         self._keys = []
+        self._topography = None  # an array or Vec topography, written to results files
         # File names are options read at set-up; arrays and Vecs are handed over after it.
         if topography_kind is not None:
             if topography_kind not in ("height", "gap"):
@@ -315,7 +322,17 @@ class Solver:
     def solve_path(self):
         """Runs the option path and returns the curve. With option output, writes the results file
         (and the fields of its states with option fields)."""
-        _adhbem.solver_solve_path(self._s)
+        output = self._options.get("output")
+        began = time.time()
+        try:
+            _adhbem.solver_solve_path(self._s)
+        except BaseException:
+            # a path that fails or is stopped still writes what it computed (complete = 0)
+            if output and self._written_since(output, began):
+                self._save_topography(output)
+            raise
+        if output:
+            self._save_topography(output)
         return self.curve()
 
     def iterate_path(self):
@@ -377,6 +394,25 @@ class Solver:
         """Writes the curve (and, with option fields, the current fields, as those of the last row)
         to file and its CSV."""
         _adhbem.solver_write(self._s, str(file))
+        self._save_topography(file)
+
+    def _written_since(self, file, began):
+        """Whether file was written after time began, as every rank learns from rank 0."""
+        comm = self.compliance.getComm()
+        written = comm.getRank() != 0 or (os.path.exists(file) and os.path.getmtime(file) >= began - 1)
+        return bool(comm.tompi4py().allreduce(int(written), op=_min()))
+
+    def _save_topography(self, file):
+        # libadhbem writes an array indenter's kind but not its values: they go to /topography as a
+        # rough surface's heights do, so -adh_topography FILE -adh_topography_dataset topography
+        # (with its topography_kind) gives the same profile.
+        if self._topography is None:
+            return
+        viewer = PETSc.Viewer().createHDF5(os.fspath(file), mode=PETSc.Viewer.Mode.APPEND, comm=self.compliance.getComm())
+        try:
+            self._topography.view(viewer)
+        finally:
+            viewer.destroy()
 
     def view(self):
         _adhbem.solver_view(self._s)
@@ -394,7 +430,11 @@ class Solver:
         Clears the contact state; the next start() or solve_path() begins from it."""
         if not isinstance(topography, PETSc.Vec):
             topography = self._field_from_array("topography", topography)
+        else:
+            topography = topography.copy()  # as it is now: the user may change theirs
         _adhbem.solver_set_topography(self._s, topography, str(kind))
+        topography.setName("topography")
+        self._topography = topography
 
     def _field_from_array(self, name, array, nonnegative=False):
         import numpy as np

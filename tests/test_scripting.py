@@ -1,8 +1,9 @@
 """The Python Solver as scripts use it: options from any sequence or NumPy array, manual start()
 and step() recorded in the curve (and in write()'s file), every state's fields during a path
-(iterate_path() and monitors) the same as solve_path()'s, and the pull-off force. Tests marked
-`mpi` assert on values every rank has."""
+(iterate_path() and monitors) the same as solve_path()'s, the pull-off force, and the README's
+Python examples run as they are written. Tests marked `mpi` assert on values every rank has."""
 import os
+import re
 
 import numpy as np
 import pytest
@@ -115,3 +116,40 @@ def test_pull_off_force(tmp):
     hertz = adhbem.Solver(path=[0.0, 0.01], **dict(OPTS, gamma=0.0))
     hertz.solve_path()
     assert hertz.pull_off_force == 0.0
+
+
+def readme_python_blocks():
+    """The Python code blocks of README.md's section "From Python", in order."""
+    with open(os.path.join(ROOT, "README.md")) as f:
+        text = f.read()
+    section = text[text.index("## From Python"):]
+    section = section[:section.index("\n## ", 1)]
+    return re.findall(r"```python\n(.*?)```", section, re.S)
+
+
+def test_readme_python_examples(tmp_path, monkeypatch):
+    """Exactly the README's code: the fields read during the path mean something (compression at
+    the largest load, tension before pull-off), and the files it writes hold what it says."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("writes into its working directory")
+    blocks = readme_python_blocks()
+    assert len(blocks) == 2 and "iterate_path()" in blocks[0]
+    monkeypatch.chdir(tmp_path)
+    ns = {}
+    exec(compile(blocks[0], "README.md", "exec"), ns)
+    z = ns["z"]
+    exec(compile(blocks[1], "README.md", "exec"), ns)
+    curve, pressure = ns["curve"], ns["pressure"]
+    assert len(pressure) == len(curve["d"]) and curve["pulled_off"][-1] == 1
+    assert ns["at_load"].max() > 0 and ns["at_tension"].min() < 0 and not pressure[-1].any()
+    assert ns["F_pull"] == -curve["force"].min()
+    assert round(ns["F_pull"], 4) == 0.0107  # the number the README gives
+    with adhbem.load(tmp_path / "jkr.h5") as r:
+        assert np.array_equal(r.curve["force"], curve["force"]) and r.params["pull_off_force"] == ns["F_pull"]
+    with adhbem.load(tmp_path / "bump.h5") as r:
+        import h5py
+        with h5py.File(tmp_path / "bump.h5", "r") as f:
+            assert np.array_equal(f["topography"][()], z)
+        assert r.params["indenter"] == "array" and r.params["gamma_field"] == 1
+        assert np.array_equal(r.curve["force"], ns["bump"]["force"])
+    assert abs(ns["stats"]["realised_rms_slope"] - 0.1) < 1e-12

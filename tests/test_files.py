@@ -173,6 +173,27 @@ def test_output_attributes(tmp):
     assert not bool(b["gamma_field"]) and "gamma_field_file" not in b
 
 
+@pytest.mark.mpi
+@pytest.mark.parametrize("kind", ["height", "gap"])
+def test_array_topography_is_in_the_results_file(tmp, kind):
+    """A topography handed over as an array (or Vec) is saved as /topography, as given, by
+    solve_path's output and by write(); read back with its kind it gives the same curve."""
+    z = height_map() + 1e-4 * np.cos(7 * np.arange(N))[None, :]   # not symmetric in x
+    given = z if kind == "height" else z.max() - z
+    out, written = os.path.join(tmp, f"{kind}.h5"), os.path.join(tmp, f"{kind}_write.h5")
+    s = adhbem.Solver(topography=given, topography_kind=kind, output=out, **OPTS)
+    c = s.solve_path()
+    s.write(written)
+    mpi().Barrier()
+    import h5py
+    for name in (out, written):
+        with h5py.File(name, "r") as f:
+            same = np.array_equal(f["topography"][()], given) and f.attrs["topography_kind"].decode() == kind
+        assert mpi().allreduce(int(same), op=_min()) == 1, name
+    again = curve(topography=out, topography_dataset="topography", topography_kind=kind)
+    assert same_curve(again, c) < 1e-12
+
+
 # ---- the work-of-adhesion field ------------------------------------------------------------------
 
 @pytest.fixture(scope="module")

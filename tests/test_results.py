@@ -1,6 +1,7 @@
 """adhbem.load (the results file as NumPy arrays, fields read lazily) and python3 -m adhbem.plot
 (curves against the analytic solution where there is one, area against force, contact maps),
-on the output of every indenter and both boundaries."""
+on the output of every indenter and both boundaries; both work without petsc4py. The figure's
+labels, legs, markers, units and normalised axes are checked on the Figure object."""
 import subprocess
 import sys
 
@@ -9,7 +10,8 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
-from adhbem.plot import analytic
+from adhbem.plot import analytic, figure
+from adhbem.plot import main as plot_main
 from adhbem_build import EXE
 from common import python_env
 
@@ -83,3 +85,196 @@ def test_plot_of_a_missing_file_says_so(tmp_path):
     serial_only()
     r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(tmp_path / "none.h5")], capture_output=True, text=True, env=python_env())
     assert r.returncode == 1 and "none.h5" in r.stderr and "Traceback" not in r.stderr
+
+
+# A Python without PETSc (a laptop that reads results): petsc4py, mpi4py and adhbem's C extension
+# cannot be imported in it.
+WITHOUT_PETSC = """
+import importlib.abc, runpy, sys
+
+class Blocked(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("petsc4py", "mpi4py") or name == "adhbem._adhbem":
+            raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+        return None
+
+sys.meta_path.insert(0, Blocked())
+results, png = sys.argv[1:]
+
+import adhbem
+with adhbem.load(results) as r:
+    assert r.params["indenter"] == "sphere" and len(r.curve["d"]) > 2, r.params
+    assert r.field("pressure", -1).shape == (32, 32)
+try:
+    adhbem.Solver
+    raise AssertionError("adhbem.Solver without petsc4py")
+except ImportError as e:
+    assert "petsc4py" in str(e) and "adhbem.load" in str(e), e
+
+sys.argv = ["python3 -m adhbem.plot", results, "--out", png]
+try:
+    runpy.run_module("adhbem.plot", run_name="__main__", alter_sys=True)
+except SystemExit as e:
+    assert e.code == 0, e.code
+loaded = [m for m in sys.modules if m.split(".")[0] in ("petsc4py", "mpi4py") or m == "adhbem._adhbem"]
+assert not loaded, loaded
+print("read and plotted without PETSc")
+"""
+
+
+def test_load_and_plot_without_petsc4py(tmp_path):
+    serial_only()
+    out = run(tmp_path, "sphere", CASES["sphere"])
+    png = tmp_path / "laptop.png"
+    r = subprocess.run([sys.executable, "-c", WITHOUT_PETSC, str(out), str(png)], capture_output=True, text=True,
+                       env=python_env(), timeout=120)
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert "read and plotted without PETSc" in r.stdout and png.stat().st_size > 10000
+    # and where petsc4py is installed, import adhbem alone does not start PETSc either
+    r = subprocess.run([sys.executable, "-c", "import sys, adhbem; print(sorted(m for m in sys.modules if 'petsc' in m))"],
+                       capture_output=True, text=True, env=python_env(), timeout=60)
+    assert r.returncode == 0 and r.stdout.strip() == "[]", r.stdout + r.stderr[-2000:]
+
+
+# ---- the figure: labels, legs, markers, units, normalised axes, bad options ---------------------
+
+def legend(ax):
+    return [t.get_text() for t in ax.get_legend().get_texts()]
+
+
+def line(ax, label):
+    found = [ln for ln in ax.get_lines() if ln.get_label() == label]
+    assert len(found) == 1, (label, [ln.get_label() for ln in ax.get_lines()])
+    return found[0]
+
+
+JKR = ["-adh_indenter", "sphere", "-adh_gamma", "1e-3", "-adh_path", "0,0.02,-0.03"]
+
+
+def test_compare_labels_say_what_differs(tmp_path):
+    serial_only()
+    a = run(tmp_path, "a", JKR, fields=False)
+    b = run(tmp_path, "b", JKR + ["-adh_criterion", "crack-closure"], fields=False)
+    c = run(tmp_path, "c", ["-adh_indenter", "sphere", "-adh_gamma", "2e-3", "-adh_path", "0,0.02,-0.03"], fields=False)
+    fig = figure(str(a), compare=[str(b), str(c)])
+    names = legend(fig.axes[0])
+    assert "a: dgamma = 0.001, pohrt-popov, approach" in names
+    assert "b: dgamma = 0.001, crack-closure (radius 16), retraction" in names
+    assert "c: dgamma = 0.002, pohrt-popov, approach" in names
+    # what is the same (grid, boundary, control) is not repeated; the attach rule when files have it
+    assert not any("N = 32" in n or "boundary" in n for n in names)
+    import h5py
+    with h5py.File(b, "r+") as f:
+        f.attrs["attach"] = "reach"
+    with h5py.File(a, "r+") as f:
+        f.attrs["attach"] = "penetration"
+    d = run(tmp_path, "d", JKR + ["-adh_n", "24"], fields=False)
+    names = legend(figure(str(a), compare=[str(b), str(d)]).axes[0])
+    assert "a: pohrt-popov, attach penetration, N = 32, approach" in names
+    assert "b: crack-closure (radius 16), attach reach, N = 32, approach" in names
+    assert "d: pohrt-popov, N = 24, approach" in names
+
+
+def test_a_gamma_field_is_labelled_as_one(tmp_path):
+    serial_only()
+    g = tmp_path / "stripes.npy"
+    np.save(g, np.where(np.arange(32)[None, :] < 16, 2e-3, 5e-4) * np.ones((32, 1)))
+    out = run(tmp_path, "field", ["-adh_indenter", "sphere", "-adh_gamma_field", str(g), "-adh_path", "0,0.02,-0.03"], fields=False)
+    fig = figure(str(out))
+    names = legend(fig.axes[0])
+    assert "adhbem, dgamma field stripes.npy, approach" in names
+    assert not any("no adhesion" in n or "Hertz" in n or "JKR" in n for n in names)  # no theory for a field
+    assert "dgamma field" in fig._suptitle.get_text()
+
+
+def test_approach_and_retraction_and_the_pull_off_marker(tmp_path):
+    serial_only()
+    out = run(tmp_path, "jkr", JKR)
+    fig = figure(str(out))
+    with adhbem.load(out) as r:
+        d, F = r.curve["d"], r.curve["force"]
+        pulled = int(np.nonzero(r.curve["pulled_off"])[0][0])
+    ax = fig.axes[0]
+    up, down = line(ax, "adhbem, dgamma = 0.001, approach"), line(ax, "adhbem, dgamma = 0.001, retraction")
+    assert np.all(np.diff(up.get_xdata()) > 0) and np.all(np.diff(down.get_xdata()) < 0)
+    assert up.get_linestyle() != down.get_linestyle()
+    assert len(up.get_xdata()) + len(down.get_xdata()) == len(d) + 1  # they share the turning point
+    star = line(ax, f"pull-off force F = {-F.min():.4g} (largest tension)")
+    assert star.get_ydata()[0] == F.min() and star.get_color() == "red"
+    lost = line(ax, "contact lost: the leg ends")
+    assert lost.get_xdata()[0] == d[pulled]
+    assert "JKR (theory)" in legend(ax)
+    assert set(legend(fig.axes[1])) >= {"adhbem, dgamma = 0.001, approach", "adhbem, dgamma = 0.001, retraction"}
+
+
+def test_units_are_stated(tmp_path):
+    serial_only()
+    fig = figure(str(run(tmp_path, "jkr", JKR)))
+    labels = [fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel(), fig.axes[1].get_ylabel()]
+    assert labels == ["indentation d (input length unit)", "force F (input units: E* x length^2)",
+                      "contact area A (input length unit^2)"]
+    assert any("any consistent set" in t.get_text() for t in fig.texts)
+
+
+def test_normalised_jkr_sphere(tmp_path):
+    serial_only()
+    out = run(tmp_path, "jkr", JKR)
+    fig = figure(str(out), normalised=True)
+    ax = fig.axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("indentation d / |d_c|", "force F / F_adh")
+    assert fig.axes[1].get_ylabel().startswith("contact radius a / a_c")
+    gamma, R, E = 1e-3, 1.0, 1.0
+    Fadh, ac = 1.5 * np.pi * gamma * R, (9 * np.pi * gamma * R ** 2 / (8 * E)) ** (1 / 3)
+    dc = (3 * np.pi ** 2 * gamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
+    with adhbem.load(out) as r:
+        c = r.curve
+    up = line(ax, "adhbem, dgamma = 0.001, approach")
+    k = len(up.get_xdata())
+    assert np.allclose(up.get_xdata(), c["d"][:k] / dc, rtol=1e-12) and np.allclose(up.get_ydata(), c["force"][:k] / Fadh, rtol=1e-12)
+    area = line(fig.axes[1], "adhbem, dgamma = 0.001, approach")
+    assert np.allclose(area.get_ydata(), np.sqrt(c["area"][:k] / np.pi) / ac, rtol=1e-12)
+    theory = line(ax, "JKR (theory)")
+    assert abs(theory.get_ydata().min() + 1) < 1e-3  # JKR pulls off at F_adh
+    star = [ln for ln in ax.get_lines() if ln.get_label().startswith("pull-off force")][0]
+    assert star.get_ydata()[0] == c["force"].min() / Fadh
+
+
+def test_normalised_periodic_cell(tmp_path):
+    serial_only()
+    out = run(tmp_path, "rough", CASES["rough"])
+    fig = figure(str(out), normalised=True)
+    with adhbem.load(out) as r:
+        c, cell = r.curve, r.params["Nx"] * r.params["hx"] * r.params["Ny"] * r.params["hy"]
+    assert cell == 32 * 32
+    ax = fig.axes[0]
+    assert ax.get_ylabel() == "mean pressure F / (Lx Ly) (units of E*)"
+    assert fig.axes[1].get_ylabel() == "contact area fraction A / (Lx Ly)"
+    up = line(ax, "adhbem, dgamma = 0.004, approach")
+    k = len(up.get_ydata())
+    assert np.array_equal(up.get_ydata(), c["force"][:k] / cell)
+    area = line(fig.axes[1], "adhbem, dgamma = 0.004, approach")
+    assert np.array_equal(area.get_ydata(), c["area"][:k] / cell) and area.get_ydata().max() <= 1
+
+
+def test_bad_states_and_normalised_are_errors(tmp_path, capsys):
+    serial_only()
+    out = run(tmp_path, "jkr", JKR)
+    with adhbem.load(out) as r:
+        n = len(r.curve["d"])
+    for states in ("99", f"{n}", f"-{n + 1}", "0,99"):
+        with pytest.raises(SystemExit) as e:
+            plot_main([str(out), "--states", states, "--out", str(tmp_path / "x.png")])
+        err = capsys.readouterr().err
+        assert e.value.code == 2 and "--states" in err and f"rows 0 to {n - 1}" in err, err
+    assert plot_main([str(out), "--states", f"0,-1,{n - 1}", "--out", str(tmp_path / "x.png")]) == 0
+    nofields = run(tmp_path, "nofields", JKR, fields=False)
+    with pytest.raises(SystemExit):
+        plot_main([str(nofields), "--states", "0"])
+    assert "has no fields" in capsys.readouterr().err
+    punch = run(tmp_path, "punch", CASES["punch"], fields=False)
+    with pytest.raises(SystemExit):
+        plot_main([str(punch), "--normalised"])
+    assert "--normalised" in capsys.readouterr().err
+    # through the command line too
+    r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(out), "--states", "99"], capture_output=True, text=True, env=python_env())
+    assert r.returncode == 2 and "--states: 99 is not a state" in r.stderr and "Traceback" not in r.stderr

@@ -6,6 +6,9 @@
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
 #include "surface.h"
+/* libadhbem's insides, for what its API does not give yet: the path (iterate_path) and the
+   monitors (called on manually recorded states). */
+#include "solverimpl.h"
 
 /* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \
@@ -180,22 +183,76 @@ static PyObject *state_dict(AdhSolver s)
   return state_columns(&st);
 }
 
+/* Records the state a step just reached, as a path records its states: appended to the curve
+   (so curve() and write() have the states of manual start() and step()) with the time since t0,
+   and the monitors called. libadhbem's own append is internal; the curve is its public struct. */
+static PetscErrorCode RecordState(AdhSolver s, PetscLogDouble t0, AdhState *st)
+{
+  const AdhCurve *cc;
+  AdhCurve       *c;
+  PetscLogDouble  t1;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverComputeState(s, st));
+  PetscCall(PetscTime(&t1));
+  st->seconds = (PetscReal)(t1 - t0);
+  PetscCall(AdhSolverGetCurve(s, &cc));
+  c = (AdhCurve *)cc;
+  if (c->n == c->cap) {
+    c->cap = PetscMax(64, 2 * c->cap);
+    PetscCall(PetscRealloc(c->cap * sizeof(AdhState), &c->state));
+  }
+  c->state[c->n++] = *st;
+  for (PetscInt k = 0; k < s->nmonitors; k++) {
+    /* a monitor that fails on one rank stops every rank, as in a path */
+    int err = (int)s->monitors[k](s, c->n - 1, st, s->monitor_ctx[k]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, s->comm));
+    PetscCheck(!err, s->comm, PETSC_ERR_USER, "Monitor %" PetscInt_FMT " failed at state %" PetscInt_FMT " (error %d)", k, c->n - 1, err);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* start(d) begins a new curve, as a path does; step(d) adds to it. */
+static PyObject *start_or_step(PyObject *args, PetscBool start)
+{
+  PyObject      *cap;
+  double         d;
+  AdhSolver      s;
+  AdhState       st;
+  PetscLogDouble t0;
+  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
+  s = solver_get(cap);
+  PyPetscCall(PetscTime(&t0));
+  if (start) {
+    const AdhCurve *c;
+    PyPetscCall(AdhSolverStart(s, d));
+    PyPetscCall(AdhSolverGetCurve(s, &c));
+    ((AdhCurve *)c)->n = 0;
+  } else PyPetscCall(AdhSolverStep(s, d));
+  PyPetscCall(RecordState(s, t0, &st));
+  return state_columns(&st);
+}
+
 static PyObject *py_solver_start(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  double    d;
-  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
-  PyPetscCall(AdhSolverStart(solver_get(cap), d));
-  return state_dict(solver_get(cap));
+  return start_or_step(args, PETSC_TRUE);
 }
 
 static PyObject *py_solver_step(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  double    d;
-  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
-  PyPetscCall(AdhSolverStep(solver_get(cap), d));
-  return state_dict(solver_get(cap));
+  return start_or_step(args, PETSC_FALSE);
+}
+
+/* The option path: its points and the steps per leg. */
+static PyObject *py_solver_path(PyObject *self, PyObject *args)
+{
+  PyObject *cap, *path;
+  AdhSolver s;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  s    = solver_get(cap);
+  path = PyList_New(s->npath);
+  for (PetscInt k = 0; k < s->npath; k++) PyList_SET_ITEM(path, k, PyFloat_FromDouble((double)s->path[k]));
+  return Py_BuildValue("Nn", path, (Py_ssize_t)s->steps);
 }
 
 static PyObject *py_solver_state(PyObject *self, PyObject *args)
@@ -363,8 +420,9 @@ static PyObject *py_solver_view(PyObject *self, PyObject *args)
 
 static PyMethodDef methods[] = {
   {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> capsule (options read with the prefix)"},
-  {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state"},
-  {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state"},
+  {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state, the first row of a new curve"},
+  {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state, appended to the curve"},
+  {"solver_path", py_solver_path, METH_VARARGS, "solver_path(s) -> (path points, steps per leg)"},
   {"solver_state", py_solver_state, METH_VARARGS, "solver_state(s) -> state"},
   {"solver_solve_path", py_solver_solve_path, METH_VARARGS, "solver_solve_path(s)"},
   {"solver_monitor", py_solver_monitor, METH_VARARGS, "solver_monitor(s, fn): fn(step, state) after every recorded state"},

@@ -18,6 +18,7 @@ def _plain(value):
 class Results:
     """One results file. curve: dict of 1-D arrays, one entry per recorded state; params: the
     root attributes (grid, material, indenter, control, criterion, pull_off_force, complete...);
+    pull_off_force: the largest tension carried;
     states: the curve rows that have fields (empty without -adh_fields); field(name, state): the
     (Ny, Nx) array of pressure, displacement, gap or contact of curve row `state`; profile and
     critical_stress: the (Ny, Nx) arrays written once."""
@@ -48,6 +49,11 @@ class Results:
         if not len(frames):
             raise KeyError(f"{self.path} has no fields of state {state} (it has those of states {self.states.tolist()})")
         return self._file["fields"][name][frames[0]]
+
+    @property
+    def pull_off_force(self):
+        """The largest tension carried over the run, -min(force) (0: none)."""
+        return self.params.get("pull_off_force", max(0.0, -float(self.curve["force"].min())))
 
     @property
     def profile(self):

@@ -1,0 +1,477 @@
+"""The solver side of adhbem: petsc4py and the C extension (``import adhbem`` loads this module
+the first time one of its names is used, so that reading and plotting results need neither).
+
+The objects this module hands out are real petsc4py objects: the half-space compliance is a
+``PETSc.Mat`` (a MatShell applied with distributed FFTW), fields are ``PETSc.Vec`` on its row
+layout. Grids are distributed by whole rows: each rank holds rows ``j`` in ``row_range(K)`` and
+all ``Nx`` points of each, so a local array has shape ``(rows, Nx)`` and index ``[j - j0, i]``.
+"""
+import importlib.util
+import os
+import sys
+import time
+
+import adhbem_build
+import petsc4py
+
+# Let PETSc see the command line (options such as -adh_fftw_planner) unless the user already
+# initialised petsc4py.
+if "petsc4py.PETSc" not in sys.modules:
+    petsc4py.init(sys.argv)
+from petsc4py import PETSc  # noqa: E402
+
+_package_path = sys.modules[__package__].__path__  # where the extension is looked for
+
+
+def _import_extension():
+    """The C extension of the build adhbem_build names, checked against petsc4py: PETSc objects
+    pass between the two, so both must come from the same PETSc (the same PetscInt)."""
+    if adhbem_build.EXTENSION_DIR not in _package_path:
+        _package_path.insert(0, adhbem_build.EXTENSION_DIR)
+    if importlib.util.find_spec(__package__ + "._adhbem") is None:
+        raise ImportError(f"adhbem: the C extension is not built in {adhbem_build.BUILD}: run ./run build "
+                          "(ADHBEM_INDICES=64 ./run build for the 64-bit-index PETSc, into build64/)")
+    from . import _adhbem
+    ours, theirs = 8 * _adhbem.petsc_int_size, 8 * PETSc.IntType().itemsize
+    if ours != theirs:
+        raise ImportError(f"adhbem: the C extension in {adhbem_build.BUILD} is built against a PETSc with {ours}-bit "
+                          f"indices, but petsc4py ({os.path.dirname(petsc4py.__file__)}) is the one of a PETSc with "
+                          f"{theirs}-bit indices. ./run chooses both (ADHBEM_INDICES=32 or 64); by hand, set "
+                          f"ADHBEM_BUILD to the build of petsc4py's PETSc (build/ for 32-bit, build64/ for 64-bit "
+                          f"indices) or PYTHONPATH so that it gives the {ours}-bit petsc4py")
+    return _adhbem
+
+
+_adhbem = _import_extension()
+from ._adhbem import chi, chi_square, critical_stress, love_coefficient  # noqa: E402,F401
+
+__all__ = ["PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows", "set_local_rows",
+           "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
+
+
+def _is_sequence(value):
+    """A list, tuple, NumPy array or other sequence of values (not a string, not a 0-d array)."""
+    import numpy as np
+    if isinstance(value, (str, bytes, os.PathLike)):
+        return False
+    return np.ndim(value) > 0
+
+
+def _pair(value, name):
+    if _is_sequence(value):
+        value = list(value)
+        if len(value) != 2:
+            raise ValueError(f"{name}: give one value or two (x, y), got {value!r}")
+        return value[0], value[1]
+    return value, value
+
+
+def compliance(n, size=1.0, E_star=1.0, boundary="free", comm=None):
+    """The compliance K (u = K p) on an n = N or (Nx, Ny) grid over size = L or (Lx, Ly).
+
+    boundary is "free" (isolated contact, exact linear convolution) or "periodic".
+    """
+    Nx, Ny = _pair(n, "n")
+    Lx, Ly = _pair(size, "size")
+    comm = PETSc.COMM_WORLD if comm is None else comm
+    if not isinstance(comm, PETSc.Comm):
+        comm = PETSc.Comm(comm)
+    return _adhbem.compliance(comm, int(Nx), int(Ny), float(Lx), float(Ly), float(E_star), str(boundary))
+
+
+_surface_count = 0
+
+
+def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavelength=None,
+                  rms_height=None, rms_slope=None, seed=1, comm=None):
+    """A periodic, self-affine, Gaussian random surface on an n = N or (Nx, Ny) grid over
+    size = L or (Lx, Ly): returns (z, stats).
+
+    z is a ``PETSc.Vec`` of heights (mean zero) on the grid's row layout (a block of Nx values per
+    row), so ``gather(z, z)`` and ``local_rows(z, z)`` work. The power spectrum is flat below
+    2 pi/rolloff_wavelength (default: the cell size), ~ q^(-2(1+hurst)) up to
+    2 pi/cutoff_wavelength (default: 4 grid spacings) and zero above. Give rms_height or
+    rms_slope (default rms_slope 0.1, defined spectrally); it is realised exactly. The same seed
+    gives the same surface, bit for bit, on any number of ranks.
+
+    stats: the resolved parameters and the realised statistics (realised_rms_height,
+    realised_rms_slope, realised_mean, min_height, max_height, modes, ...). Bad parameters raise
+    PETSc.Error naming the option (-adh_hurst, -adh_rms_height, ...).
+    """
+    global _surface_count
+    _surface_count += 1
+    prefix = f"adhsurface{_surface_count}_"
+    Nx, Ny = _pair(n, "n")
+    Lx, Ly = _pair(size, "size")
+    comm = PETSc.COMM_WORLD if comm is None else comm
+    if not isinstance(comm, PETSc.Comm):
+        comm = PETSc.Comm(comm)
+    options = dict(hurst=hurst, rolloff_wavelength=rolloff_wavelength, cutoff_wavelength=cutoff_wavelength,
+                   rms_height=rms_height, rms_slope=rms_slope, seed=seed)
+    opts = PETSc.Options()
+    names = []
+    try:
+        for key, value in options.items():
+            if value is not None:
+                names.append(f"{prefix}adh_{key}")
+                opts[names[-1]] = _option_value(value)
+        return _adhbem.rough_surface(comm, int(Nx), int(Ny), float(Lx), float(Ly), prefix)
+    finally:
+        for name in names:
+            opts.delValue(name)
+
+
+def compliance_info(K):
+    """dict(lambda_min=..., row_norm_bound=..., mult_count=...) of a compliance Mat: a lower bound on
+    the eigenvalues of every K_CC, an upper bound on the 2-norm of every row, the multiplies so far."""
+    return _adhbem.compliance_info(K)
+
+
+def grid_shape(obj):
+    """(Nx, Ny) of the grid behind a compliance Mat or a grid Vec: a row of the grid is a block
+    (block size Nx) of the Vecs the Mat makes (``K.createVecs()``) and of the solver's fields."""
+    if isinstance(obj, PETSc.Mat):
+        info = _adhbem.compliance_info(obj)
+        return info["Nx"], info["Ny"]
+    if isinstance(obj, PETSc.Vec):
+        Nx, N = obj.getBlockSize(), obj.getSize()
+    else:
+        raise TypeError(f"grid_shape: a compliance Mat or a grid Vec, not {type(obj).__name__}")
+    if Nx <= 1 and N > 1:
+        raise ValueError("this object carries no grid rows (block size 1): pass the compliance Mat, "
+                         "or make the Vec with K.createVecs() or rough_surface")
+    return Nx, N // Nx
+
+
+def row_range(obj):
+    """(j0, j1): the rows of the grid this rank owns."""
+    Nx, _ = grid_shape(obj)
+    r0, r1 = obj.getOwnershipRange()
+    return r0 // Nx, r1 // Nx
+
+
+def local_rows(vec, obj):
+    """The local part of a grid Vec as a (rows, Nx) NumPy view (writes go into the Vec)."""
+    Nx, _ = grid_shape(obj)
+    j0, j1 = row_range(obj)
+    return vec.getArray().reshape(j1 - j0, Nx)
+
+
+def set_local_rows(vec, obj, array):
+    """Set the local rows of a grid Vec from a (rows, Nx) array, or from the full (Ny, Nx) field."""
+    import numpy as np
+    Nx, Ny = grid_shape(obj)
+    j0, j1 = row_range(obj)
+    array = np.asarray(array, dtype=PETSc.ScalarType)
+    if array.shape == (Ny, Nx):
+        array = array[j0:j1]
+    if array.shape != (j1 - j0, Nx):
+        raise ValueError(f"expected shape {(j1 - j0, Nx)} (local rows) or {(Ny, Nx)}, got {array.shape}")
+    vec.getArray()[:] = array.ravel()
+
+
+def _min():
+    from mpi4py import MPI
+    return MPI.MIN
+
+
+def gather(vec, obj):
+    """The whole field as an (Ny, Nx) NumPy array on every rank (for small grids and tests)."""
+    import numpy as np
+    Nx, Ny = grid_shape(obj)
+    comm = vec.getComm().tompi4py()
+    parts = comm.allgather(vec.getArray().copy())
+    return np.concatenate(parts).reshape(Ny, Nx)
+
+
+_solver_count = 0
+
+
+def _option_value(value):
+    """The option's text: a sequence (list, tuple, NumPy array) as comma-separated values, a real
+    number with all its digits."""
+    import numbers
+    import numpy as np
+    if _is_sequence(value):
+        return ",".join(_option_value(v) for v in np.asarray(value, dtype=object).ravel())
+    if isinstance(value, np.ndarray):  # 0-d
+        value = value.item()
+    if isinstance(value, (bool, np.bool_)):
+        return "1" if value else "0"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    return str(value)
+
+
+class Solver:
+    """The adhesive contact solver, configured by the same options as the executable.
+
+    Keyword arguments are the ``-adh_`` options without that prefix, e.g.
+    ``Solver(n=128, size=1.0, E_star=1.0, gamma=2e-3, radius=1.0, path=[0.06, -0.03], steps=45)``;
+    KSP options go the same way (``ksp_rtol=1e-12``). They are stored under a prefix of this
+    solver's own, so two solvers do not see each other's options.
+
+    A topography or a work-of-adhesion field is a file name (the options ``topography``,
+    ``gamma_field``), or a NumPy array of shape (Ny, Nx) (every rank passes the whole array), or
+    a Vec on the grid: ``Solver(n=(Nx, Ny), topography=z, topography_kind="height",
+    gamma_field=g)``. A height map z gives the profile h = max(z) - z (the highest peak touches
+    at d = 0); ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the
+    indenter "array"; the results files it writes hold it as ``/topography``.
+
+    The fields (``pressure``, ``displacement``, ``gap``, ``contact_set``: petsc4py objects) are
+    those of the current state: read them inside ``for state in s.iterate_path():`` or a
+    ``monitor(fn)`` to have every state's; after ``solve_path()`` they are the last state's (at
+    pull-off: nothing in contact). ``curve()`` gives the recorded states as NumPy arrays, from
+    ``solve_path()``, ``iterate_path()`` or ``start(d)`` and ``step(d)``; ``pull_off_force`` the
+    largest tension carried.
+    """
+
+    def __init__(self, comm=None, topography=None, topography_kind=None, gamma_field=None, **options):
+        self._keys = []
+        self._topography = None  # an array or Vec topography, written to results files
+        # File names are options read at set-up; arrays and Vecs are handed over after it.
+        if topography_kind is not None:
+            if topography_kind not in ("height", "gap"):
+                raise ValueError(f"topography_kind: 'height' or 'gap', got {topography_kind!r}")
+            options["topography_kind"] = topography_kind
+        if isinstance(topography, (str, os.PathLike)):
+            options["topography"] = os.fspath(topography)
+            topography = None
+        elif topography is not None:
+            indenter = options.pop("indenter", "array")
+            if indenter != "array":
+                raise ValueError(f"topography: an array or Vec is the indenter; indenter={indenter!r} conflicts with it")
+        if isinstance(gamma_field, (str, os.PathLike)):
+            options["gamma_field"] = os.fspath(gamma_field)
+            gamma_field = None
+        self._init(comm, options)
+        try:
+            if topography is not None:
+                self.set_topography(topography, topography_kind or "height")
+            if gamma_field is not None:
+                self.set_gamma_field(gamma_field)
+        except BaseException:
+            self._forget_options()
+            raise
+
+    @staticmethod
+    def _check_option_names(options):
+        # A misspelled keyword is an error, as for any Python function (the C check would name
+        # the option with this solver's internal prefix).
+        import difflib
+        known = [name[len("adh_"):] for name in _adhbem.option_names()]
+        for key in options:
+            if key in known or key.startswith(("ksp_", "pc_")):
+                continue
+            near = difflib.get_close_matches(key, known, n=1)
+            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            raise TypeError(f"Solver: unknown option {key!r}{hint}")
+
+    def _init(self, comm, options):
+        global _solver_count
+        self._check_option_names(options)
+        _solver_count += 1
+        self.prefix = f"adhbem{_solver_count}_"
+        comm = PETSc.COMM_WORLD if comm is None else comm
+        if not isinstance(comm, PETSc.Comm):
+            comm = PETSc.Comm(comm)
+        self._options = dict(options)
+        opts = PETSc.Options()
+        self._keys = []
+        for key, value in options.items():
+            name = f"{self.prefix}adh_{key}"
+            opts[name] = _option_value(value)
+            self._keys.append(name)
+        try:
+            self._s = _adhbem.solver_create(comm, self.prefix)
+        except BaseException:
+            self._forget_options()
+            raise
+
+    def _forget_options(self):
+        # The options stay while the solver lives: operators made later (bounding-box windows)
+        # read the -adh_fftw_* ones.
+        try:
+            opts = PETSc.Options()
+            for name in self._keys:
+                opts.delValue(name)
+        except Exception:  # PETSc already finalised at interpreter exit
+            pass
+        self._keys = []
+
+    def __del__(self):
+        self._forget_options()
+
+    def start(self, d):
+        """The starting state at indentation d (a force under control="force"; hertz or adhesive,
+        option start): the first row of a new curve. Returns the state as a dict of the curve's
+        columns."""
+        return _adhbem.solver_start(self._s, float(d))
+
+    def step(self, d):
+        """One step to indentation d (a force under control="force") from the current contact set,
+        appended to the curve; returns the state as a dict of the curve's columns."""
+        return _adhbem.solver_step(self._s, float(d))
+
+    def state(self):
+        """The current state as a dict of the curve's columns (not recorded)."""
+        return _adhbem.solver_state(self._s)
+
+    def solve_path(self):
+        """Runs the option path and returns the curve. With option output, writes the results file
+        (and the fields of its states with option fields)."""
+        output = self._options.get("output")
+        began = time.time()
+        try:
+            _adhbem.solver_solve_path(self._s)
+        except BaseException:
+            # a path that fails or is stopped still writes what it computed (complete = 0)
+            if output and self._written_since(output, began):
+                self._save_topography(output)
+            raise
+        if output:
+            self._save_topography(output)
+        return self.curve()
+
+    def iterate_path(self):
+        """Runs the option path as solve_path() does, a state at a time: yields each state (a dict of
+        the curve's columns) with the solver's fields current, on every rank, and appends it to the
+        curve. All ranks must take the same states (a break on one rank only leaves the others
+        waiting). It writes no results file as it goes: write(FILE) after the loop writes the curve
+        and the last state's fields, and options output, checkpoint and restart are solve_path()'s.
+
+            for state in s.iterate_path():
+                p = adhbem.gather(s.pressure, s.compliance)   # this state's pressure
+        """
+        for name in ("output", "checkpoint", "restart"):
+            if name in self._options:
+                raise ValueError(f"iterate_path: option {name!r} is solve_path()'s (iterate_path writes no file as it goes; "
+                                 "call write(FILE) after the loop)")
+        path, steps = _adhbem.solver_path(self._s)
+        yield self.start(path[0])
+        for a, b in zip(path[:-1], path[1:]):
+            for k in range(1, steps + 1):
+                # the targets of solve_path, to the last bit
+                state = self.step(a + (b - a) * k / steps)
+                yield state
+                if state["pulled_off"]:
+                    break  # the rest of this leg has nothing in contact
+
+    def monitor(self, fn):
+        """Calls fn(step, state) on every rank after each recorded state (of solve_path(),
+        iterate_path(), start() and step()); step is the curve row, state a dict of the curve's
+        columns. The solver's fields (pressure, contact_set, ...) are current inside fn, so it can
+        gather or save them."""
+        _adhbem.solver_monitor(self._s, fn)
+
+    @property
+    def pull_off_force(self):
+        """The largest tension carried over the curve, -min(force), or 0 without tension: the
+        pull_off_force of the results file. Under displacement control the state that ends a leg
+        by pull-off (pulled_off = 1) carries less: the contact has let go there."""
+        F = self.curve()["force"]
+        return max(0.0, -float(F.min())) if len(F) else 0.0
+
+    def contact_mask(self):
+        """A new Vec on the grid: 1 on the points of the contact set, 0 elsewhere."""
+        v = self.pressure.duplicate()
+        v.set(0.0)
+        r0, _ = v.getOwnershipRange()
+        v.getArray()[self.contact_set.getIndices() - r0] = 1.0
+        return v
+
+    def curve(self):
+        """dict of NumPy arrays, one entry per recorded state: d, force, area, contact_points,
+        outer_iterations, ksp_iterations, seconds, compliance_applications, fft_pairs (compliance
+        and preconditioner), patches, mean_gap, max_tension_ratio, area_tension,
+        area_compression, pulled_off."""
+        import numpy as np
+        return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
+
+    def write(self, file):
+        """Writes the curve (and, with option fields, the current fields, as those of the last row)
+        to file and its CSV."""
+        _adhbem.solver_write(self._s, str(file))
+        self._save_topography(file)
+
+    def _written_since(self, file, began):
+        """Whether file was written after time began, as every rank learns from rank 0."""
+        comm = self.compliance.getComm()
+        written = comm.getRank() != 0 or (os.path.exists(file) and os.path.getmtime(file) >= began - 1)
+        return bool(comm.tompi4py().allreduce(int(written), op=_min()))
+
+    def _save_topography(self, file):
+        # libadhbem writes an array indenter's kind but not its values: they go to /topography as a
+        # rough surface's heights do, so -adh_topography FILE -adh_topography_dataset topography
+        # (with its topography_kind) gives the same profile.
+        if self._topography is None:
+            return
+        viewer = PETSc.Viewer().createHDF5(os.fspath(file), mode=PETSc.Viewer.Mode.APPEND, comm=self.compliance.getComm())
+        try:
+            self._topography.view(viewer)
+        finally:
+            viewer.destroy()
+
+    def view(self):
+        _adhbem.solver_view(self._s)
+
+    def set_gamma_field(self, vec):
+        """Work of adhesion as a field dgamma(x,y): a Vec on the grid (see make_field), or an
+        (Ny, Nx) NumPy array. It replaces the scalar gamma in Sigma."""
+        if not isinstance(vec, PETSc.Vec):
+            vec = self._field_from_array("gamma_field", vec, nonnegative=True)
+        _adhbem.solver_set_gamma_field(self._s, vec)
+
+    def set_topography(self, topography, kind="height"):
+        """The indenter becomes this topography (indenter "array"): an (Ny, Nx) NumPy array or a
+        Vec on the grid, holding heights z (kind "height": h = max(z) - z) or the gap h ("gap").
+        Clears the contact state; the next start() or solve_path() begins from it."""
+        if not isinstance(topography, PETSc.Vec):
+            topography = self._field_from_array("topography", topography)
+        else:
+            topography = topography.copy()  # as it is now: the user may change theirs
+        _adhbem.solver_set_topography(self._s, topography, str(kind))
+        topography.setName("topography")
+        self._topography = topography
+
+    def _field_from_array(self, name, array, nonnegative=False):
+        import numpy as np
+        Nx, Ny = grid_shape(self.compliance)
+        try:
+            a = np.asarray(array, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{name}: expected a NumPy array of shape (Ny, Nx) = {(Ny, Nx)} or a PETSc.Vec ({e})") from None
+        if a.shape != (Ny, Nx):
+            raise ValueError(f"{name}: expected shape (Ny, Nx) = {(Ny, Nx)}, got {a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"{name}: holds NaN or Inf values")
+        if nonnegative and np.any(a < 0):
+            raise ValueError(f"{name}: the work of adhesion must be >= 0, the minimum is {a.min()!r}")
+        return self.make_field(a)
+
+    def make_field(self, array=None):
+        """A new Vec on the grid, optionally set from a (rows, Nx) or (Ny, Nx) array."""
+        v = self.pressure.duplicate()
+        v.set(0.0)
+        if array is not None:
+            set_local_rows(v, self.compliance, array)
+        return v
+
+    @property
+    def critical_stress(self):
+        """Sigma of the scalar work of adhesion on this grid."""
+        return _adhbem.solver_critical_stress(self._s)
+
+    def _obj(self, name):
+        return _adhbem.solver_objects(self._s, name)[name]
+
+    pressure = property(lambda self: self._obj("pressure"), doc="pressure Vec (tension < 0)")
+    displacement = property(lambda self: self._obj("displacement"), doc="surface displacement u = K p")
+    gap = property(lambda self: self._obj("gap"), doc="gap g = h - d + u")
+    profile = property(lambda self: self._obj("profile"), doc="indenter profile h")
+    critical_stress_field = property(lambda self: self._obj("critical_stress"), doc="Sigma(x,y)")
+    compliance = property(lambda self: self._obj("compliance"), doc="the compliance Mat K")
+    contact_set = property(lambda self: self._obj("contact_set"), doc="the contact set IS")
+    spacing = property(lambda self: (self._obj("hx"), self._obj("hy")), doc="(hx, hy)")

@@ -1,0 +1,155 @@
+"""The Python Solver as scripts use it: options from any sequence or NumPy array, manual start()
+and step() recorded in the curve (and in write()'s file), every state's fields during a path
+(iterate_path() and monitors) the same as solve_path()'s, the pull-off force, and the README's
+Python examples run as they are written. Tests marked `mpi` assert on values every rank has."""
+import os
+import re
+
+import numpy as np
+import pytest
+
+import adhbem
+from adhbem import PETSc
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# JKR sphere, loaded from first touch and pulled off (a_c about 7 h)
+OPTS = dict(n=32, size=1.0, E_star=1.0, gamma=1e-3, radius=1.0, steps=6)
+PATH = [0.0, 0.02, -0.03]
+
+
+def mpi():
+    return PETSc.COMM_WORLD.tompi4py()
+
+
+@pytest.fixture
+def tmp(tmp_path):
+    """A directory every rank sees: rank 0's."""
+    return mpi().bcast(str(tmp_path), root=0)
+
+
+def same_curve(a, b):
+    """The columns of two curves equal to the last bit, but for the wall time."""
+    return sorted(a) == sorted(b) and all(np.array_equal(a[k], b[k]) for k in a if k != "seconds")
+
+
+@pytest.mark.mpi
+def test_options_from_arrays_and_sequences():
+    listed = adhbem.Solver(path=PATH, **OPTS).solve_path()
+    for path in (np.array(PATH), tuple(PATH), [np.float64(v) for v in PATH], np.array([PATH]).T):
+        c = adhbem.Solver(path=path, **OPTS).solve_path()
+        assert same_curve(c, listed), path
+    # a grid as an array too, and NumPy scalars
+    c = adhbem.Solver(**dict(OPTS, n=np.array([32, 32]), steps=np.int64(6), gamma=np.float64(1e-3)), path=np.array(PATH)).solve_path()
+    assert same_curve(c, listed)
+
+
+@pytest.mark.mpi
+def test_manual_steps_are_recorded(tmp):
+    s = adhbem.Solver(path=PATH, **OPTS)
+    seen = []
+    s.monitor(lambda row, state: seen.append((row, state["d"])))
+    states = [s.start(0.01), s.step(0.015), s.step(0.02), s.step(0.01)]
+    c = s.curve()
+    assert len(c["d"]) == 4 and seen == [(k, st["d"]) for k, st in enumerate(states)]
+    for k, st in enumerate(states):
+        assert all(c[key][k] == st[key] for key in st), k
+    assert np.all(c["seconds"] > 0)
+    out = os.path.join(tmp, "manual.h5")
+    s.write(out)
+    with adhbem.load(out) as r:
+        assert np.array_equal(r.curve["d"], [0.01, 0.015, 0.02, 0.01])
+        assert np.array_equal(r.curve["force"], c["force"])
+    # start() begins a new curve, as a path does
+    s.start(0.005)
+    assert np.array_equal(s.curve()["d"], [0.005])
+
+
+@pytest.mark.mpi
+def test_iterate_path_gives_every_state_of_solve_path(tmp):
+    """iterate_path() takes the states solve_path() takes, to the last bit, with the fields of each
+    current in the loop: the pressure a monitor of solve_path() sees, and the results file's."""
+    ref = adhbem.Solver(path=PATH, fields="pressure", output=os.path.join(tmp, "path.h5"), **OPTS)
+    monitored = []
+    ref.monitor(lambda row, state: monitored.append(adhbem.gather(ref.pressure, ref.compliance)))
+    c_ref = ref.solve_path()
+    assert c_ref["pulled_off"][-1] == 1 and len(c_ref["d"]) < 1 + 2 * OPTS["steps"]
+    # after the path only the pulled-off state is left: nothing in contact
+    assert ref.contact_set.getSize() == 0 and adhbem.gather(ref.pressure, ref.compliance).max() == 0
+
+    s = adhbem.Solver(path=PATH, **OPTS)
+    iterated = [(state, adhbem.gather(s.pressure, s.compliance)) for state in s.iterate_path()]
+    c = s.curve()
+    assert same_curve(c, c_ref)
+    assert len(iterated) == len(monitored) == len(c["d"])
+    with adhbem.load(os.path.join(tmp, "path.h5")) as r:
+        for row, ((state, p), q) in enumerate(zip(iterated, monitored)):
+            assert state["d"] == c["d"][row] and np.array_equal(p, q) and np.array_equal(p, r.field("pressure", row)), row
+    # the largest load compresses, the largest tension pulls
+    assert iterated[int(np.argmax(c["d"]))][1].max() > 0 and iterated[int(np.argmin(c["force"]))][1].min() < 0
+
+    # a break ends the path there; the curve has the states taken
+    s = adhbem.Solver(path=PATH, **OPTS)
+    for k, state in enumerate(s.iterate_path()):
+        if k == 3:
+            break
+    assert same_curve({key: v[:4] for key, v in c_ref.items()}, s.curve())
+
+
+def test_iterate_path_writes_no_file_as_it_goes(tmp_path):
+    s = adhbem.Solver(path=PATH, output=str(tmp_path / "x.h5"), **OPTS)
+    with pytest.raises(ValueError, match="option 'output' is solve_path"):
+        next(s.iterate_path())
+
+
+@pytest.mark.mpi
+def test_pull_off_force(tmp):
+    s = adhbem.Solver(path=PATH, **OPTS)
+    assert s.pull_off_force == 0.0  # no curve yet
+    c = s.solve_path()
+    assert s.pull_off_force == -c["force"].min() > 0
+    # JKR's 1.5 pi dgamma R, with the criterion's error on this coarse grid
+    assert abs(s.pull_off_force / (1.5 * np.pi * OPTS["gamma"]) - 1) < 0.3
+    out = os.path.join(tmp, "pulloff.h5")
+    s.write(out)
+    with adhbem.load(out) as r:
+        assert r.params["pull_off_force"] == s.pull_off_force == r.pull_off_force
+    hertz = adhbem.Solver(path=[0.0, 0.01], **dict(OPTS, gamma=0.0))
+    hertz.solve_path()
+    assert hertz.pull_off_force == 0.0
+
+
+def readme_python_blocks():
+    """The Python code blocks of README.md's section "From Python", in order."""
+    with open(os.path.join(ROOT, "README.md")) as f:
+        text = f.read()
+    section = text[text.index("## From Python"):]
+    section = section[:section.index("\n## ", 1)]
+    return re.findall(r"```python\n(.*?)```", section, re.S)
+
+
+def test_readme_python_examples(tmp_path, monkeypatch):
+    """Exactly the README's code: the fields read during the path mean something (compression at
+    the largest load, tension before pull-off), and the files it writes hold what it says."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("writes into its working directory")
+    blocks = readme_python_blocks()
+    assert len(blocks) == 2 and "iterate_path()" in blocks[0]
+    monkeypatch.chdir(tmp_path)
+    ns = {}
+    exec(compile(blocks[0], "README.md", "exec"), ns)
+    z = ns["z"]
+    exec(compile(blocks[1], "README.md", "exec"), ns)
+    curve, pressure = ns["curve"], ns["pressure"]
+    assert len(pressure) == len(curve["d"]) and curve["pulled_off"][-1] == 1
+    assert ns["at_load"].max() > 0 and ns["at_tension"].min() < 0 and not pressure[-1].any()
+    assert ns["F_pull"] == -curve["force"].min()
+    assert round(ns["F_pull"], 4) == 0.0107  # the number the README gives
+    with adhbem.load(tmp_path / "jkr.h5") as r:
+        assert np.array_equal(r.curve["force"], curve["force"]) and r.params["pull_off_force"] == ns["F_pull"]
+    with adhbem.load(tmp_path / "bump.h5") as r:
+        import h5py
+        with h5py.File(tmp_path / "bump.h5", "r") as f:
+            assert np.array_equal(f["topography"][()], z)
+        assert r.params["indenter"] == "array" and r.params["gamma_field"] == 1
+        assert np.array_equal(r.curve["force"], ns["bump"]["force"])
+    assert abs(ns["stats"]["realised_rms_slope"] - 0.1) < 1e-12

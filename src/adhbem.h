@@ -105,7 +105,7 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
    precondition CG on the contact set. */
 PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Estar, Mat *);
 
-/* ---- solver.c: the Pohrt-Popov adhesive contact solver ---- */
+/* ---- solver.c: the adhesive contact solver ---- */
 
 typedef struct _n_AdhSolver *AdhSolver;
 typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;

@@ -45,9 +45,10 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
   shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
   /* force control's pull-off is found to this tolerance; the predictor's guess is certified, but
-     where a state is not unique (rounding at a pressure of zero) it picks one */
+     where a state is not unique (rounding at a pressure of zero) it picks one: it runs only
+     without adhesion */
   if (s->force_control) shape[n++] = (Shape){"-adh_pulloff_rtol", PETSC_REAL, &s->pulloff_rtol};
-  shape[n++] = (Shape){"-adh_predictor", PETSC_STRING, s->predictor_type};
+  if (!(s->Sigma > 0 || s->Sigma_field)) shape[n++] = (Shape){"-adh_predictor", PETSC_STRING, s->predictor_type};
   return n;
 }
 
@@ -190,7 +191,7 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &version));
-  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d", s->restart, ADH_CHECKPOINT_VERSION);
+  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) {
     PetscBool same = PETSC_FALSE;

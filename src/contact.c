@@ -132,9 +132,9 @@ PetscErrorCode AdhSolverRestoreCriticalStress_Private(AdhSolver s, const PetscSc
 
 /* The gap below which an open point k joins: 0 (penetration), under reach the gap an element
    closes under its own critical tension, Sigma K_00, under griffith the limit the detach test
-   left in la; false if k cannot join (it is in the set, or with adhesion it let go in this step:
-   it stays off, so the step cannot cycle; where Sigma = 0, reach is penetration and the point may
-   come back). */
+   left in la; false if k cannot join (it is in the set, or under reach or griffith it let go in
+   this step and its limit is positive: it stays off, so the step cannot cycle; under penetration,
+   or where Sigma = 0, a point that let go may come back). */
 static inline PetscBool AttachLimit(AdhSolver s, PetscBool reach, PetscReal K00, const PetscScalar *ta, PetscReal tu, const PetscScalar *la, PetscInt k, PetscReal *limit)
 {
   *limit = la ? PetscRealPart(la[k]) : reach ? ADH_SIGMA_AT(ta, tu, k) * K00 : 0.0;

@@ -140,7 +140,6 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   PetscCall(VecSetBlockSize(cc->ul, g->Nx));
   PetscCall(VecDuplicate(cc->ul, &cc->hl));
   PetscCall(VecDuplicate(cc->ul, &cc->Gl));
-  PetscCall(VecDuplicate(cc->ul, &cc->pl));
   PetscCall(VecScatterCreate(cc->u, from, cc->ul, NULL, &cc->fetch));
   PetscCall(ISDestroy(&from));
   PetscCall(PetscMalloc4(cc->gym, &cc->urow, cc->gym, &cc->hrow, cc->gym, &cc->Grow, cc->gym, &cc->prow));
@@ -288,6 +287,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
 
   PetscFunctionBegin;
   if (!s->attach_limit) PetscCall(VecDuplicate(s->p, &s->attach_limit));
+  if (!cc->pl) PetscCall(VecDuplicate(cc->ul, &cc->pl));
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(FetchRows(cc, s->p, cc->pl));
   PetscCall(GetRows(cc, cc->ul, cc->urow, &ul));

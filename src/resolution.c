@@ -8,18 +8,33 @@
    the grid only where a_c spans many elements. On a periodic cell R is the mean summit radius of
    a Gaussian isotropic surface (Nayak 1971, wide band): its mean summit curvature is
    sqrt(8 / (3 pi)) times the rms of the Laplacian of h, which the periodic stiffness gives
-   exactly on mean-free h (S S h = -(E* / 2)^2 Lap h). On a free boundary only the sphere has one radius. */
+   exactly on mean-free h (S S h = -(E* / 2)^2 Lap h); this for rough surfaces and topographies. A
+   sphere has one radius, on either boundary. With a dgamma field the weakest adhesion present
+   counts (the smallest a_c). */
 #include "solverimpl.h"
 
 PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
 {
-  PetscReal dgamma = s->gamma, R = 0.0, h = PetscMin(s->grid->hx, s->grid->hy);
+  PetscReal          dgamma = s->gamma, R = 0.0, h = PetscMin(s->grid->hx, s->grid->hy);
+  const AdhIndenterType type = s->indenter.type;
 
   PetscFunctionBegin;
   s->asperity_ac = 0.0;
-  if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &dgamma));
+  if (s->gamma_field) { /* the weakest adhesion present: the smallest a_c, the safe side */
+    const PetscScalar *ga;
+    PetscInt           n;
+    dgamma = PETSC_MAX_REAL;
+    PetscCall(VecGetLocalSize(s->gamma_field, &n));
+    PetscCall(VecGetArrayRead(s->gamma_field, &ga));
+    for (PetscInt k = 0; k < n; k++)
+      if (PetscRealPart(ga[k]) > 0) dgamma = PetscMin(dgamma, PetscRealPart(ga[k]));
+    PetscCall(VecRestoreArrayRead(s->gamma_field, &ga));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &dgamma, 1, MPIU_REAL, MPIU_MIN, s->comm));
+    if (dgamma == PETSC_MAX_REAL) dgamma = 0.0;
+  }
   if (!(dgamma > 0) || s->sigma_fixed > 0) PetscFunctionReturn(0);
-  if (s->boundary == ADH_BOUNDARY_PERIODIC && s->S) {
+  if (type == ADH_INDENTER_SPHERE) R = s->indenter.radius;
+  else if (s->boundary == ADH_BOUNDARY_PERIODIC && s->S && (type == ADH_INDENTER_ROUGH || type == ADH_INDENTER_FILE || type == ADH_INDENTER_ARRAY)) {
     Vec       a, b;
     PetscReal norm, lap;
     PetscCall(VecDuplicate(s->h, &a));
@@ -30,10 +45,10 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
     PetscCall(MatMult(s->S, a, b));
     PetscCall(VecNorm(b, NORM_2, &norm));
     lap = norm * 4.0 / (s->Estar * s->Estar) / PetscSqrtReal((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
-    if (lap > 0) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * lap);
+    if (lap > 0 && PetscIsNormalReal(lap)) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * lap);
     PetscCall(VecDestroy(&a));
     PetscCall(VecDestroy(&b));
-  } else if (s->boundary == ADH_BOUNDARY_FREE && s->indenter.type == ADH_INDENTER_SPHERE) R = s->indenter.radius;
+  }
   if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * s->Estar), 1.0 / 3.0) / h;
   PetscFunctionReturn(0);
 }
@@ -69,7 +84,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
 
   PetscFunctionBegin;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
-  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->boundary == ADH_BOUNDARY_FREE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)s->asperity_ac, s->asperity_ac < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off depends on the grid)" : ""));
+  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)s->asperity_ac, s->asperity_ac < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off depends on the grid)" : ""));
   PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
   if (k < 0) PetscFunctionReturn(0);
   st = &s->curve.state[k];

@@ -184,7 +184,10 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
   PetscCall(VecDestroy(&s->gamma_field));
   s->gamma_field = gamma;
   s->gamma_file[0] = 0; /* this field replaces one read from -adh_gamma_field */
-  if (s->setup) PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
+  if (s->setup) {
+    PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
+    PetscCall(AdhSolverEstimateResolution_Private(s));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -396,7 +399,7 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "AdhSolver: Pohrt-Popov adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "AdhSolver: adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(AdhGridView(s->grid, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));

@@ -32,8 +32,11 @@ static PetscInt Union(PetscInt *parent, PetscInt a, PetscInt b)
   return 1;
 }
 
-/* What a patch holds: its points, its force sum(p) and its tension sum(min(p, 0)). */
-#define ADH_PATCH_SUMS 3
+/* What a patch holds: its points, its force sum(p), its tension sum(min(p, 0)), the grid rows it
+   meets and its rows that are wholly in contact. A patch that meets every row, or holds a whole row,
+   is a band around a periodic cell (a line contact on a strip): its edge is long, whatever its
+   points. */
+#define ADH_PATCH_SUMS 5
 
 /* The patches of the set: their number, the points of the smallest one carrying a net tension, and
    the share of the tension in patches of fewer than ADH_RESOLVED_PATCH points. */
@@ -45,6 +48,7 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
   PetscInt          *first, *rowa, *rowb, *prev, *cur, *swap;
   PetscInt           k, i, j, local = 0, total, merged = 0, nset = 0, result[2] = {0, 0};
   PetscReal         *sums, *allsums = NULL, small[2] = {0.0, 0.0};
+  PetscInt          *lastrow, *inrow;
   const PetscScalar *pa;
   PetscMPIInt        rank, size, *rcounts = NULL, *displs = NULL;
 
@@ -75,17 +79,27 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
     if (Find(parent, k) == k) label[k] = local++;
   /* each local cluster's sums */
   PetscCall(PetscCalloc1(ADH_PATCH_SUMS * local + 1, &sums));
+  PetscCall(PetscMalloc2(local + 1, &lastrow, local + 1, &inrow));
+  for (k = 0; k < local; k++) lastrow[k] = -1;
   PetscCall(VecGetArrayRead(s->p, &pa));
   for (j = 0, k = 0; j < n; j++) {
     const PetscReal p = PetscRealPart(pa[j]);
+    const PetscInt  l = s->in_set[j] ? label[Find(parent, k++)] : -1, row = j / Nx;
     PetscReal      *c;
-    if (!s->in_set[j]) continue;
-    c = sums + ADH_PATCH_SUMS * label[Find(parent, k++)];
+    if (l < 0) continue;
+    c = sums + ADH_PATCH_SUMS * l;
     c[0] += 1.0;
     c[1] += p;
     c[2] += PetscMin(p, 0.0);
+    if (lastrow[l] != row) { /* the first point of this patch in this row */
+      lastrow[l] = row;
+      inrow[l]   = 0;
+      c[3] += 1.0;
+    }
+    if (++inrow[l] == Nx) c[4] += 1.0;
   }
   PetscCall(VecRestoreArrayRead(s->p, &pa));
+  PetscCall(PetscFree2(lastrow, inrow));
 
   /* This rank's cluster count, then the labels of its first and last row (-1: not in the set). */
   PetscCall(PetscMalloc1(2 * Nx + 1, &edges));
@@ -137,7 +151,7 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
       const PetscReal *c = allsums + ADH_PATCH_SUMS * k;
       if (Find(gparent, k) != k) continue;
       small[1] += c[2];
-      if (c[0] < ADH_RESOLVED_PATCH) small[0] += c[2];
+      if (c[0] < ADH_RESOLVED_PATCH && !(periodic && (c[3] >= s->grid->Ny || c[4] > 0))) small[0] += c[2];
       if (c[1] < 0 && (!result[1] || c[0] < result[1])) result[1] = (PetscInt)c[0];
     }
     PetscCall(PetscFree(gparent));

@@ -110,13 +110,15 @@ def run(tmp_path, args):
     return lines, attrs
 
 
-def test_resolved_sphere(tmp_path):
-    """The JKR sphere at a_c/h = 25: the estimate is a_c/h itself, no tension in small patches, and
-    the run says the grid resolves the adhesion."""
+@pytest.mark.parametrize("boundary", ["free", "periodic"])
+def test_resolved_sphere(tmp_path, boundary):
+    """The JKR sphere at a_c/h = 25: the estimate is a_c/h itself (on a periodic cell too, where the
+    profile's kink at the cell's edge must not count as an asperity), no tension in small patches,
+    and the run says the grid resolves the adhesion."""
     serial_only()
     N, ratio = 128, 25.0
     gamma = gamma_for(ratio / N)
-    lines, attrs = run(tmp_path, ["-adh_n", str(N), "-adh_size", "1", "-adh_gamma", repr(gamma),
+    lines, attrs = run(tmp_path, ["-adh_n", str(N), "-adh_size", "1", "-adh_gamma", repr(gamma), "-adh_boundary", boundary,
                                   "-adh_path", f"{(1.3 * ratio / N) ** 2!r},-0.03", "-adh_steps", "20"])
     say("\n" + "\n".join(lines))
     assert abs(attrs["asperity_contact_radius"] - ratio) < 1e-9 * ratio
@@ -154,6 +156,39 @@ def test_asperity_radius_estimate_of_a_wave(tmp_path):
                               "-adh_path", "0,0.1", "-adh_steps", "2"])
     R = 1 / (math.sqrt(8 / (3 * math.pi)) * k ** 2 * A)
     assert abs(attrs["asperity_contact_radius"] / (9 * math.pi * gamma * R ** 2 / 8) ** (1 / 3) - 1) < 1e-10
+
+
+def test_asperity_estimate_with_a_gamma_field(tmp_path):
+    """A dgamma field given from Python after set-up: the estimate takes its weakest adhesion (the
+    smallest a_c), as a scalar dgamma of that value gives."""
+    serial_only()
+    opts = dict(n=64, size=64.0, boundary="periodic", indenter="rough", rolloff_wavelength=32.0, seed=3,
+                start="adhesive", path=[0.0, 0.4, -0.4], steps=3)
+    field = np.where(np.arange(64)[None, :] < 32, 0.004, 0.002) * np.ones((64, 1))
+    radii = []
+    for k, extra in enumerate((dict(gamma_field=field), dict(gamma=0.002))):
+        out = tmp_path / f"r{k}.h5"
+        adhbem.Solver(**opts, **extra, output=str(out)).solve_path()
+        with h5py.File(out, "r") as f:
+            radii.append(float(f.attrs["asperity_contact_radius"]))
+    assert radii[0] == radii[1] and 0 < radii[0] < 3
+
+
+def test_band_around_a_strip_is_resolved():
+    """A line contact on a strip 4 rows wide (a wave along x) has few points per patch but a long
+    edge: it counts as resolved, as on a cell 34 rows wide."""
+    serial_only()
+    N, D, gamma = 128, 0.01, 4.44e-5
+    x = (np.arange(N) + 0.5) / N
+    shares = []
+    for ny in (4, 34):
+        h = D * (1 - np.cos(2 * math.pi * np.tile(x, (ny, 1))))
+        c = adhbem.Solver(n=(N, ny), size=(1.0, ny / N), gamma=gamma, boundary="periodic", topography=h,
+                          topography_kind="gap", start="hertz", path=[0.5 * D, -0.5 * D], steps=20).solve_path()
+        assert c["force"].min() < 0
+        shares.append(c["small_patch_tension"])
+    say(f"\nwave on 128 x 4 and 128 x 34: small-patch shares {shares[0].max():.3f}, {shares[1].max():.3f}")
+    assert np.all(shares[0] == 0) and np.all(shares[1] == 0)
 
 
 @pytest.mark.mpi

@@ -37,20 +37,21 @@ positive d). d1 is the indentation at which --depth (default a quarter) of the f
 profile lies below it. The same d values are visited on every grid. The retraction returns
 through the approach's d values (as ./run rough does): with --legs 2, 0 -> d1 -> -d1, its steps
 are twice the approach's, and the trapezoidal loop integral then carries a bias of about
-(dd_r^2 - dd_a^2)/12 F'(d1), which in the resolved configuration (--quick) was of the order of
+(dd_r^2 - dd_a^2)/12 F'(d1), which in the moderate configuration (--quick) was of the order of
 the dissipated energy itself.
 
-Configurations (--config, default both; lengths in units of the coarsest grid's spacing, L = N1):
-- unresolved: like ./run rough, cut-off at 4 spacings of the coarsest grid (8, 16 on the finer
-  ones), roll-off at a quarter of the cell, dgamma = 0.004 E*; grids 128, 256, 512. a_c is about
-  2 coarse spacings, half the cut-off wavelength: the coarse grids do not resolve the smallest
-  asperities' contacts.
-- resolved: a cell of 8 cut-off wavelengths, roll-off at the cell, dgamma chosen from the
-  spectrum so that a_c = 5/16 lambda_c, which is 10 spacings of the middle default grid
-  (256, lambda_c = 32 h); grids 128, 256, 512 (from trial runs up to 256, estimated at some
-  minutes for both criteria on one rank; --n 256,512,1024 halves every spacing again, at about
-  eight times the cost).
---quick runs both on grids 48, 96, 192 (the same physics at 3/8 of the resolution: a smoke test of
+Configurations (--config, default all; lengths in units of the coarsest grid's spacing, L = N1):
+- unresolved: like ./run rough used to be, cut-off at 4 spacings of the coarsest grid (8, 16 on
+  the finer ones), roll-off at a quarter of the cell, dgamma = 0.004 E*. a_c is about one coarse
+  spacing: the coarse grids do not resolve the smallest asperities' contacts.
+- moderate: a cell of 8 cut-off wavelengths, roll-off at the cell, dgamma chosen from the
+  spectrum so that a_c = 5/16 lambda_c (10 spacings of the middle grid at 128, 256, 512).
+- resolved: the same surface with a_c = 5/8 lambda_c (stronger adhesion: the contact at the
+  deepest state is pulled in, 75% of the cell); `--n 64,128,256` gives a_c/h 5, 10, 20, the
+  resolution of ./run rough.
+Every spacing halves with the grids given, --n 256,512,1024 at about eight times the cost of
+128,256,512.
+--quick runs them on grids 48, 96, 192 (the same physics at 3/8 of the resolution: a smoke test of
 about a minute, not a convergence study).
 
 Per (configuration, criterion, N), from the curve: the force and the contact area fraction at the
@@ -65,11 +66,11 @@ between successive grids, (f_2N - f_N)/|f_2N|, the observed order p = log2(|f_N 
 opposite sign, one of them zero, or p <= 0: no sign of convergence) the order 1 is assumed and
 the table says so.
 
-    ./run bench convergence [--config unresolved|resolved|both] [--quick] [--n N1,N2,N3] [--np P]
+    ./run bench convergence [--config unresolved|moderate|resolved|all] [--quick] [--n N1,N2,N3] [--np P]
         [--steps K] [--legs 3|2] [--gamma G] [--criteria pohrt-popov,crack-closure] [--seed S] [--depth F]
         [--json FILE] [--keep DIR] [-- OPTIONS]
 
---gamma overrides both configurations' dgamma (units of the coarsest spacing, E* = 1); --keep DIR
+--gamma overrides the configurations' dgamma (units of the coarsest spacing, E* = 1); --keep DIR
 keeps each run's results file (CONFIG_CRITERION_N.h5 and .csv); further adhbem options go after --.
 """
 import argparse
@@ -200,10 +201,12 @@ def configuration(name, n1, hurst=0.8, rms_slope=0.1, seed=1, gamma=None):
         s = BandLimitedSurface(L, rolloff=L / 4, cutoff=4.0, hurst=hurst, rms_slope=rms_slope, seed=seed)
         g = 0.004 if gamma is None else gamma
         what = "cut-off 4 coarse spacings, roll-off L/4, dgamma 0.004 (as ./run rough)"
-    elif name == "resolved":
+    elif name in ("moderate", "resolved"):
+        # the same surface; the smallest asperities' JKR radius a fraction of the cut-off wavelength
+        share = {"moderate": 5 / 16, "resolved": 5 / 8}[name]
         s = BandLimitedSurface(L, rolloff=L, cutoff=L / 8, hurst=hurst, rms_slope=rms_slope, seed=seed)
-        g = s.gamma_for(5 / 16 * s.cutoff) if gamma is None else gamma
-        what = "cell of 8 cut-off wavelengths, roll-off at the cell, dgamma from a_c = 5/16 lambda_c"
+        g = s.gamma_for(share * s.cutoff) if gamma is None else gamma
+        what = f"cell of 8 cut-off wavelengths, roll-off at the cell, dgamma from a_c = {share * 16:g}/16 lambda_c"
     else:
         raise ValueError(f"unknown configuration {name!r}")
     if gamma is not None:
@@ -402,7 +405,7 @@ def study(name, a, sizes, criteria):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  epilog="See the module docstring (bench/convergence.py) for the method.")
-    ap.add_argument("--config", default="both", choices=("unresolved", "resolved", "both"))
+    ap.add_argument("--config", default="all", choices=("unresolved", "moderate", "resolved", "all"))
     ap.add_argument("--quick", action="store_true", help="grids 48,96,192: a smoke test")
     ap.add_argument("--n", help="grid sizes N1,N2,N3 (each twice the last; default 128,256,512)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
@@ -428,7 +431,7 @@ def main():
     if a.keep:
         os.makedirs(a.keep, exist_ok=True)
         a.keep = os.path.abspath(a.keep)
-    configs = ("unresolved", "resolved") if a.config == "both" else (a.config,)
+    configs = ("unresolved", "moderate", "resolved") if a.config == "all" else (a.config,)
     print(f"# Grid convergence of adhesive rough contact: grids {', '.join(map(str, sizes))},"
           f" criteria {', '.join(criteria)}, {a.np} rank(s) a run")
     out = dict(grids=sizes, criteria=criteria, np=a.np, steps=a.steps, legs=a.legs, depth=a.depth, seed=a.seed,

@@ -67,11 +67,11 @@ def loop_energy(d, F):
 def report(a):
     sys.path.insert(0, os.path.join(ROOT, "python"))
     import adhbem
-    curves = {}
+    curves, params = {}, {}
     for name in ("rough", "rough_nonadhesive"):
         with adhbem.load(os.path.join(a.results, name + ".h5")) as r:
-            curves[name] = r.curve
-            attrs = r.params
+            curves[name], params[name] = r.curve, r.params
+    attrs = params["rough"]  # the adhesive run's: its resolution
     c, c0 = curves["rough"], curves["rough_nonadhesive"]
     k, k0 = int(np.argmax(c["d"])), int(np.argmax(c0["d"]))
     N2 = a.n * a.n
@@ -108,11 +108,11 @@ def plot(a, c, c0):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--n", type=int, default=512, help="grid points per side")
+    p.add_argument("--n", type=int, default=256, help="grid points per side")
     p.add_argument("--np", type=int, default=2, help="MPI ranks")
-    p.add_argument("--gamma", type=float, default=0.05, help="work of adhesion (E* = 1, grid spacing 1)")
+    p.add_argument("--gamma", type=float, default=0.209, help="work of adhesion (E* = 1, grid spacing 1)")
     p.add_argument("--rolloff", type=float, default=1.0, help="roll-off wavelength over the cell size")
-    p.add_argument("--cutoff", type=float, default=64.0, help="cut-off wavelength in grid spacings")
+    p.add_argument("--cutoff", type=float, default=32.0, help="cut-off wavelength in grid spacings")
     p.add_argument("--steps", type=int, default=25, help="steps per leg")
     p.add_argument("--depth", type=float, default=0.25,
                    help="the deepest indentation: the fraction of the gap profile that lies below it")

@@ -29,7 +29,7 @@ def test_example_runs(tmp_path, example):
     opts = options(example)
     small = ["-adh_n", "48"]
     if opts.get("-adh_indenter") == "rough":
-        small += ["-adh_size", "48", "-adh_rolloff_wavelength", "24",
+        small += ["-adh_size", "48", "-adh_rolloff_wavelength", "24", "-adh_cutoff_wavelength", "4",
                   "-adh_path", "0,20" if opts.get("-adh_control") == "force" else "0,0.3,-0.3"]
     out = tmp_path / "out.h5"
     small += ["-adh_output", str(out)]

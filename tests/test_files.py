@@ -388,3 +388,43 @@ def test_a_path_that_never_touches_says_so(tmp_path):
     r = subprocess.run([EXE, "-adh_n", "32", "-adh_path", "-0.02,0.01", "-adh_steps", "2"],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and "never touches" not in r.stdout
+
+
+class FakeSurfaceTopography:
+    """What adhbem uses of a SurfaceTopography 2-D topography: heights() as (nx, ny), x first."""
+    dim = 2
+
+    def __init__(self, heights_xy, sizes, periodic):
+        self._h, self.physical_sizes, self.is_periodic = heights_xy, sizes, periodic
+        self.nb_grid_pts = heights_xy.shape
+
+    def heights(self):
+        return self._h
+
+
+def surface_topography_cases():
+    """The duck-typed stand-in, and the real package's Topography when it is installed."""
+    yield "stand-in", FakeSurfaceTopography
+    try:
+        from SurfaceTopography import Topography
+    except ImportError:
+        return
+    yield "SurfaceTopography", lambda h, sizes, periodic: Topography(h, sizes, periodic=periodic)
+
+
+def test_surface_topography_object_keeps_its_axes():
+    """A SurfaceTopography map (heights (nx, ny)) gives the profile of the same map as an (Ny, Nx)
+    array: not transposed, with its grid, sizes and periodicity; a conflicting n is refused."""
+    nx, ny, sx, sy = 24, 16, 3.0, 2.0
+    x = (np.arange(nx) + 0.5) * sx / nx
+    y = (np.arange(ny) + 0.5) * sy / ny
+    zxy = 0.05 * np.exp(-((x[:, None] - 1.0) ** 2 + (y[None, :] - 1.2) ** 2) / 0.2)  # (nx, ny), off-centre
+    ref = adhbem.Solver(n=(nx, ny), size=(sx, sy), boundary="periodic", topography=np.ascontiguousarray(zxy.T))
+    want = adhbem.gather(ref.profile, ref.compliance)
+    for name, make in surface_topography_cases():
+        s = adhbem.Solver(topography=make(zxy, (sx, sy), True))
+        got = adhbem.gather(s.profile, s.compliance)
+        assert got.shape == (ny, nx) and np.array_equal(got, want), name
+        assert s.compliance.getSize()[0] == nx * ny
+        with pytest.raises(ValueError, match="n="):
+            adhbem.Solver(n=(ny, nx), topography=make(zxy, (sx, sy), True))

@@ -44,6 +44,7 @@ def _import_extension():
 
 _adhbem = _import_extension()
 from ._adhbem import chi, chi_square, critical_stress, love_coefficient  # noqa: E402,F401
+from .topography import from_surface_topography, is_surface_topography  # noqa: E402
 
 __all__ = ["PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows", "set_local_rows",
            "gather", "compliance_info", "chi", "chi_square", "critical_stress", "love_coefficient"]
@@ -239,7 +240,9 @@ class Solver:
         if isinstance(topography, (str, os.PathLike)):
             options["topography"] = os.fspath(topography)
             topography = None
-        elif topography is not None:
+        elif is_surface_topography(topography):
+            topography = self._take_surface_topography(topography, options)
+        if topography is not None:
             indenter = options.pop("indenter", "array")
             if indenter != "array":
                 raise ValueError(f"topography: an array or Vec is the indenter; indenter={indenter!r} conflicts with it")
@@ -255,6 +258,24 @@ class Solver:
         except BaseException:
             self._forget_options()
             raise
+
+    @staticmethod
+    def _take_surface_topography(t, options):
+        """A SurfaceTopography topography: its heights (transposed to (Ny, Nx)), and its grid, sizes
+        and periodicity as the options n, size and boundary unless given (then they must agree)."""
+        import numpy as np
+        z, n, size, periodic = from_surface_topography(t)
+        for key, value in (("n", n), ("size", size)):
+            given = options.get(key)
+            if given is None:
+                options[key] = value
+                continue
+            pair = tuple(given) if isinstance(given, (tuple, list, np.ndarray)) else (given, given)
+            if not np.allclose(np.asarray(pair, dtype=float), value, rtol=1e-12):
+                raise ValueError(f"{key}={given!r} disagrees with the SurfaceTopography map's {value} "
+                                 f"(Nx, Ny / Lx, Ly; its heights() are (nx, ny), adhbem's arrays (Ny, Nx))")
+        options.setdefault("boundary", "periodic" if periodic else "free")
+        return z
 
     @staticmethod
     def _check_option_names(options):

@@ -1,0 +1,30 @@
+"""Topographies as users have them: a SurfaceTopography topography object (the contact.engineering
+package, optional: https://github.com/ContactEngineering/SurfaceTopography), which brings the file
+formats it reads (x3p, di, opd, sur, ...).
+
+Axis order. adhbem's arrays are (Ny, Nx): rows along y, as the grid is distributed by rows and as
+h5py and matplotlib show them. SurfaceTopography's ``heights()`` is (nx, ny), x first; it is
+transposed here, so a square map keeps its orientation (x stays x)."""
+import numpy as np
+
+
+def is_surface_topography(obj):
+    """Whether obj looks like a SurfaceTopography 2-D topography (duck typing: the package is not a
+    dependency)."""
+    return callable(getattr(obj, "heights", None)) and hasattr(obj, "physical_sizes") and hasattr(obj, "nb_grid_pts")
+
+
+def from_surface_topography(t):
+    """(z, (Nx, Ny), (Lx, Ly), periodic) of a SurfaceTopography topography: the heights as an
+    (Ny, Nx) array, the grid, the physical sizes and whether it is periodic."""
+    if getattr(t, "dim", 2) != 2:
+        raise ValueError(f"topography: a SurfaceTopography object of dimension {t.dim}; adhbem needs a 2-D map")
+    h = np.asarray(t.heights(), dtype=np.float64)
+    if h.ndim != 2:
+        raise ValueError(f"topography: heights() of shape {h.shape}; adhbem needs a 2-D map")
+    if np.isnan(h).any():
+        raise ValueError("topography: the SurfaceTopography map has undefined (NaN) heights; fill them first "
+                         "(e.g. its interpolate_undefined_data())")
+    nx, ny = h.shape
+    sx, sy = (float(v) for v in t.physical_sizes)
+    return np.ascontiguousarray(h.T), (nx, ny), (sx, sy), bool(getattr(t, "is_periodic", False))

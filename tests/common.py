@@ -54,3 +54,29 @@ def jkr_scales(gamma, R=R, E=E):
 def gamma_for(ac, R=R, E=E):
     """The work of adhesion that gives the JKR critical radius a_c."""
     return ac ** 3 * 8 * E / (9 * math.pi * R ** 2)
+
+
+def label_patches(mask, wrap):
+    """The 4-connected clusters of a boolean (Ny, Nx) mask by flood fill, wrapping across the edges
+    when wrap (a periodic cell): (labels, -1 off the mask and 0.. on it, and their number)."""
+    ny, nx = mask.shape
+    label = -np.ones(mask.shape, int)
+    n = 0
+    for j0, i0 in zip(*np.nonzero(mask)):
+        if label[j0, i0] >= 0:
+            continue
+        label[j0, i0] = n
+        todo = [(j0, i0)]
+        while todo:
+            j, i = todo.pop()
+            for dj, di in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+                b, a = j + dj, i + di
+                if wrap:
+                    b, a = b % ny, a % nx
+                elif not (0 <= b < ny and 0 <= a < nx):
+                    continue
+                if mask[b, a] and label[b, a] < 0:
+                    label[b, a] = n
+                    todo.append((b, a))
+        n += 1
+    return label, n

@@ -21,7 +21,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
-from common import _max, _min, gamma_for, jkr_scales, rank0, say  # noqa: E402
+from common import _max, _min, gamma_for, jkr_scales, label_patches, rank0, say  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_compliance import assembled  # noqa: E402
@@ -323,28 +323,7 @@ def test_jkr_periodic_against_free():
 
 def count_patches(mask, wrap):
     """Connected clusters of mask with 4-neighbours; wrap: periodic in both directions."""
-    Ny, Nx = mask.shape
-    label = np.zeros(mask.shape, dtype=int)
-    count = 0
-    for j0 in range(Ny):
-        for i0 in range(Nx):
-            if not mask[j0, i0] or label[j0, i0]:
-                continue
-            count += 1
-            label[j0, i0] = count
-            stack = [(j0, i0)]
-            while stack:
-                j, i = stack.pop()
-                for dj, di in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-                    jj, ii = j + dj, i + di
-                    if wrap:
-                        jj, ii = jj % Ny, ii % Nx
-                    elif not (0 <= jj < Ny and 0 <= ii < Nx):
-                        continue
-                    if mask[jj, ii] and not label[jj, ii]:
-                        label[jj, ii] = count
-                        stack.append((jj, ii))
-    return count
+    return label_patches(np.asarray(mask, bool), wrap)[1]
 
 
 @pytest.mark.mpi

@@ -13,7 +13,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
-from common import say, _max, _min, gamma_for
+from common import say, _max, _min, gamma_for, label_patches
 
 SMALL = 314  # points: a patch below this does not resolve its edge
 
@@ -23,34 +23,9 @@ def serial_only():
         pytest.skip("runs the executable itself")
 
 
-def patches(mask, periodic):
-    """Labels of the 4-connected clusters of mask (wrapping on a periodic cell), by flood fill."""
-    ny, nx = mask.shape
-    label = -np.ones(mask.shape, int)
-    n = 0
-    for j0, i0 in zip(*np.nonzero(mask)):
-        if label[j0, i0] >= 0:
-            continue
-        label[j0, i0] = n
-        todo = [(j0, i0)]
-        while todo:
-            j, i = todo.pop()
-            for dj, di in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-                b, a = j + dj, i + di
-                if periodic:
-                    b, a = b % ny, a % nx
-                elif not (0 <= b < ny and 0 <= a < nx):
-                    continue
-                if mask[b, a] and label[b, a] < 0:
-                    label[b, a] = n
-                    todo.append((b, a))
-        n += 1
-    return label, n
-
-
 def expected(p, contact, periodic):
     """(patches, smallest patch with net tension, share of tension in patches < SMALL points)."""
-    label, n = patches(contact.astype(bool), periodic)
+    label, n = label_patches(contact.astype(bool), periodic)
     sizes = np.bincount(label[label >= 0], minlength=n)
     force = np.bincount(label[label >= 0], weights=p[label >= 0], minlength=n)
     tension = np.bincount(label[label >= 0], weights=np.minimum(p[label >= 0], 0), minlength=n)

@@ -279,3 +279,17 @@ def test_bad_states_and_normalised_are_errors(tmp_path, capsys):
     # through the command line too
     r = subprocess.run([sys.executable, "-m", "adhbem.plot", str(out), "--states", "99"], capture_output=True, text=True, env=python_env())
     assert r.returncode == 2 and "--states: 99 is not a state" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_resolution_panel(tmp_path):
+    """An adhesive run's figure ends with the resolution panel: the share of the tension in small
+    patches per state, the pull-off state marked with the run's verdict."""
+    serial_only()
+    rough = run(tmp_path, "rough", CASES["rough"], fields=False)
+    fig = figure(str(rough))
+    a = fig.axes[-1]
+    names = legend(a)
+    assert a.get_title() == "resolution of the adhesion"
+    assert any(n.startswith("pull-off force: not resolved (asperity a_c/h") for n in names), names
+    hertz = run(tmp_path, "hertz", CASES["hertz"], fields=False)
+    assert all(ax.get_title() != "resolution of the adhesion" for ax in figure(str(hertz)).axes)

@@ -211,7 +211,9 @@ def figure(path, states=None, compare=(), normalised=False):
             row = int(r.states[np.argmin(np.abs(r.states - (k % n)))])
             maps.append((row, r.field("contact", row), r.field("pressure", row) if "pressure" in r.field_names else None))
 
-    ncols = 2 + len(maps)
+    # how well the grid resolves the adhesion, per state (files of adhesive runs that have it)
+    resolution = "small_patch_tension" in c and c["force"].min() < 0
+    ncols = 2 + len(maps) + resolution
     fig = Figure(figsize=(5.2 * ncols, 4.8))
     ax = fig.subplots(1, ncols, squeeze=False)[0]
     colors = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -270,6 +272,8 @@ def figure(path, states=None, compare=(), normalised=False):
         a.set_xlabel(f"x ({LENGTH})")
         a.set_ylabel(f"y ({LENGTH})")
         a.set_title(f"state {row}: d = {d[row]:.4g}, F = {F[row]:.4g}", fontsize=10)
+    if resolution:
+        draw_resolution(ax[-1], runs, labels, colors)
     attach = f", attach {p['attach']}" if "attach" in p else ""
     fig.suptitle(f"{path}: {p.get('indenter')} indenter, {p.get('boundary')} boundary, {p.get('Nx')} x {p.get('Ny')},"
                  f" {adhesion_label(p)}, {p.get('criterion', 'pohrt-popov')}{attach}"
@@ -277,6 +281,30 @@ def figure(path, states=None, compare=(), normalised=False):
     fig.text(0.005, 0.005, UNITS_NOTE, fontsize=7, color="0.4", ha="left", va="bottom")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     return fig
+
+
+def draw_resolution(a, runs, labels, colors):
+    """The share of the tension carried by contact patches under 314 elements, per state: above 0.1
+    at the pull-off force the grid does not resolve the adhesion."""
+    for i, ((curve, prm), label) in enumerate(zip(runs, labels)):
+        if "small_patch_tension" not in curve:
+            continue
+        rows = np.arange(len(curve["d"]))
+        tension = curve["force"] < 0
+        a.plot(rows[tension], curve["small_patch_tension"][tension], ".-", ms=4, color=colors[i % len(colors)],
+               label=label.split(":")[0] if len(runs) > 1 else "states carrying tension")
+        if tension.any():
+            k = int(np.argmin(curve["force"]))
+            ac = prm.get("asperity_contact_radius")
+            verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
+            a.plot(k, curve["small_patch_tension"][k], "*", ms=13, color="red" if i == 0 else colors[i % len(colors)],
+                   mec="red", label=f"pull-off force: {verdict}" + (f" (asperity a_c/h {ac:.3g})" if ac else ""))
+    a.axhline(0.1, color="0.5", ls="--", lw=0.8, label="resolved at most")
+    a.set_ylim(-0.03, 1.03)
+    a.set_xlabel("state (curve row)")
+    a.set_ylabel("share of the tension in patches < 314 elements")
+    a.set_title("resolution of the adhesion", fontsize=10)
+    a.legend(fontsize=8)
 
 
 def plot(path, out=None, states=None, compare=(), normalised=False):

@@ -1,6 +1,7 @@
 /* adhbem: run an indentation path of an adhesive contact and write the curve.
    mpirun -n P build/adhbem [options] (or -options_file job.opts); -help lists the options. */
 #include <stdlib.h>
+#include <string.h>
 #include "adhbem.h"
 
 static const char help[] = "adhbem: adhesive normal contact of elastic solids with the boundary element method\n"
@@ -23,7 +24,8 @@ static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, con
   MPI_Comm_size(PETSC_COMM_WORLD, &world);
   error_on_every_rank = (PetscBool)(size == world);
   if (rank) return n;
-  if (n == PETSC_ERR_MEM && !(mess && mess[0])) fprintf(stderr, "adhbem: error: out of memory (use a smaller grid or more nodes; -adh_view shows the memory estimate)\n");
+  if (n == PETSC_ERR_SIG && mess && !strncmp(mess, "stopped by signal", 17)) fprintf(stderr, "adhbem: %s\n", mess); /* a stop, not a failure */
+  else if (n == PETSC_ERR_MEM && !(mess && mess[0])) fprintf(stderr, "adhbem: error: out of memory (use a smaller grid or more nodes; -adh_view shows the memory estimate)\n");
   else if (n == PETSC_ERR_MEM) fprintf(stderr, "adhbem: error: not enough memory: %s\n", mess);
   else if (mess && mess[0]) fprintf(stderr, "adhbem: error: %s\n", mess);
   else {
@@ -33,6 +35,23 @@ static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, con
   }
   fflush(stderr);
   return n;
+}
+
+/* Open MPI's own MPI-IO (ompio), which HDF5 writes through, opens a shared-file-pointer
+   component along with every file, though adhbem never uses shared file pointers: "sm" guards
+   each file with a named semaphore keyed on the file's base name alone (a job killed while it
+   held one leaves it locked in /dev/shm, and every later run that writes a file of that name
+   waits on it forever), "lockedfile" creates FILE-JOBID-PID.lock beside it and "individual"
+   FILE.data.RANK and FILE.metadata.RANK, all left behind by a killed job (checked: SIGKILL of a
+   job writing its results). ROMIO, Open MPI's other MPI-IO, creates nothing beside the file: it
+   is asked for unless the user chose, and the "sm" component is kept out for a user who asks
+   for ompio. */
+static void AvoidStaleLocks(void)
+{
+#if defined(OPEN_MPI)
+  setenv("OMPI_MCA_io", "^ompio", 0);
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
+#endif
 }
 
 static PetscErrorCode Run(AdhSolver solver)
@@ -75,25 +94,13 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscFunctionReturn(0);
 }
 
-/* Open MPI's "sm" shared-file-pointer component, which its MPI-IO opens along with every file
-   HDF5 writes, guards each file with a named semaphore keyed on the file's base name alone. A job
-   killed while it held one (a batch job's SIGKILL during a write) leaves it locked in /dev/shm,
-   and every later run that writes a file of that name waits on it forever. adhbem never uses
-   shared file pointers, so it asks for the others (which lock with fcntl) unless the user chose. */
-static void AvoidStaleSemaphores(void)
-{
-#if defined(OPEN_MPI)
-  setenv("OMPI_MCA_sharedfp", "^sm", 0);
-#endif
-}
-
 int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscBool      traceback = PETSC_FALSE;
   AdhSolver      solver;
 
-  AvoidStaleSemaphores();
+  AvoidStaleLocks();
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));

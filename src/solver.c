@@ -427,6 +427,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(PetscFree(s->field_states));
+  if (s->journal) fclose(s->journal);
   PetscCall(VecDestroy(&s->attach_limit));
   PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));

@@ -2,6 +2,7 @@
    mpirun -n P build/adhbem [options] (or -options_file job.opts); -help lists the options. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "adhbem.h"
 
 static const char help[] = "adhbem: adhesive normal contact of elastic solids with the boundary element method\n"
@@ -54,6 +55,46 @@ static void AvoidStaleLocks(void)
 #endif
 }
 
+/* -options_file names a file that is not there: one line, not PETSc's dump from within its
+   initialisation (printed by the first rank; every rank stops before MPI starts). */
+static int CheckOptionsFiles(int argc, char **argv)
+{
+  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+
+  if (!rank) rank = getenv("PMI_RANK");
+  if (!rank) rank = getenv("PMIX_RANK");
+  for (int k = 1; k < argc; k++) {
+    const char *file = k + 1 < argc ? argv[k + 1] : NULL;
+    if (strcmp(argv[k], "-options_file")) continue;
+    if (file && file[0] != '-' && !access(file, R_OK)) continue;
+    if (!rank || !strcmp(rank, "0")) {
+      if (!file || file[0] == '-') fprintf(stderr, "adhbem: error: -options_file needs a file name\n");
+      else fprintf(stderr, "adhbem: error: -options_file %s: no such file (or not readable)\n", file);
+    }
+    return 1;
+  }
+  return 0;
+}
+
+/* PETSc's KSP and PC options without adhbem's prefix (-ksp_rtol) do nothing: the solver's KSP
+   reads -adh_ksp_*. Nothing else in the executable reads them. */
+static PetscErrorCode CheckUnprefixedOptions(void)
+{
+  PetscInt n;
+  char   **names, **values;
+  char     message[512] = "";
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n && !message[0]; k++) {
+    const char *name = names[k][0] == '-' ? names[k] + 1 : names[k];
+    if (!strncmp(name, "ksp_", 4) || !strncmp(name, "pc_", 3)) PetscCall(PetscSNPrintf(message, sizeof(message), "-%s does nothing: the solver's KSP and PC options have the prefix adh_ (-adh_%s)", name, name));
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!message[0], PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "%s", message);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Run(AdhSolver solver)
 {
   const AdhCurve *curve;
@@ -72,6 +113,7 @@ static PetscErrorCode Run(AdhSolver solver)
     PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
+  PetscCall(CheckUnprefixedOptions());
   if (view) PetscCall(AdhSolverView(solver, NULL));
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
@@ -101,6 +143,7 @@ int main(int argc, char **argv)
   AdhSolver      solver;
 
   AvoidStaleLocks();
+  if (CheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));

@@ -6,6 +6,7 @@
    and syncs it: whatever kills the job, both hold every state recorded before (adhbem.load reads
    them). A restart appends to the results of the run it goes on from. */
 #include <errno.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "solverimpl.h"
 
@@ -42,25 +43,34 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], 
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
   if (!rank) {
-    FILE      *fp;
-    char      *slash;
-    PetscBool  exists = PETSC_TRUE;
-    PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
-    slash = strrchr(dir, '/');
-    if (slash && slash != dir) {
-      *slash = 0;
-      PetscCall(PetscTestDirectory(dir, 'w', &exists));
-      if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
-    }
-    if (!access(part, F_OK)) { /* a killed run's results, which a restart goes on in: left as they are */
-      ok = !access(part, W_OK);
-      if (!ok) PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
-    } else if (!(fp = fopen(part, "w"))) {
+    FILE       *fp;
+    char       *slash;
+    PetscBool   exists = PETSC_TRUE;
+    struct stat st;
+    size_t      len;
+    PetscCall(PetscStrlen(file, &len));
+    if ((len && file[len - 1] == '/') || (!stat(file, &st) && S_ISDIR(st.st_mode))) {
+      /* else the run would fail only at its end, renaming its results onto the directory */
       ok = 0;
-      PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      PetscCall(PetscStrncpy(reason, "it is a directory; give a file name (DIR/run.h5)", sizeof(reason)));
     } else {
-      fclose(fp);
-      remove(part);
+      PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
+      slash = strrchr(dir, '/');
+      if (slash && slash != dir) {
+        *slash = 0;
+        PetscCall(PetscTestDirectory(dir, 'w', &exists));
+        if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
+      }
+      if (!access(part, F_OK)) { /* a killed run's results, which a restart goes on in: left as they are */
+        ok = !access(part, W_OK);
+        if (!ok) PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      } else if (!(fp = fopen(part, "w"))) {
+        ok = 0;
+        PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      } else {
+        fclose(fp);
+        remove(part);
+      }
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));

@@ -77,11 +77,14 @@ PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBo
   PetscFunctionReturn(0);
 }
 
-/* The adhesion-free start carries no tension: under force control its force must be >= 0. */
+/* Under force control the first force must be >= 0: the adhesion-free start carries no tension,
+   and the adhesive start loads from first touch, where nothing holds the bodies together yet (a
+   tension there would be a pull-off of the unpressed contact, and the next states, apart, F = 0). */
 static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
 {
   PetscFunctionBegin;
   PetscCheck(s->start != ADH_START_HERTZ || !s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+  PetscCheck(!s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, a tension the start cannot reach: -adh_start adhesive loads from first touch, where the contact carries none; start from a compressive force (or 0) and pull in a later leg (-adh_path 0.01,%g)", (double)target, (double)target);
   PetscFunctionReturn(0);
 }
 

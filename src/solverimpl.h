@@ -51,6 +51,7 @@ struct _n_AdhSolver {
   /* problem */
   AdhGrid     grid;
   AdhBoundary boundary;
+  PetscBool   boundary_set;   /* -adh_boundary was given (not the default) */
   AdhIndenter indenter;
   PetscReal   Estar, gamma;
   PetscReal   sigma_fixed;    /* > 0: a mesh-independent critical stress replaces Pohrt-Popov's */
@@ -195,6 +196,7 @@ PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
 /* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;
    the step in progress is abandoned and AdhSolverSolvePath closes the results. */

@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "solverimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 5 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor */
+#define ADH_CHECKPOINT_VERSION 6 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file (read from 5 on) */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -161,6 +161,12 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "e", PETSC_REAL, &s->e));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulled_off", PETSC_INT, &pulled));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "joined_previous", PETSC_INT, &s->joined_previous));
+  /* where this run's results go (absolute): a restart goes on in that file */
+  if (s->output[0]) {
+    char full[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscGetFullPath(s->output, full, sizeof(full)));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "output", PETSC_STRING, full));
+  }
   PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
   PetscCall(VecView(s->p, v));
   PetscCall(MaskVec(s, &mask));
@@ -179,6 +185,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   if (!rank) ok = rename(part, s->checkpoint) == 0;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_checkpoint: could not move %s to %s", part, s->checkpoint);
+  s->checkpoint_state = s->curve.n - 1;
   PetscFunctionReturn(0);
 }
 
@@ -191,7 +198,7 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &version));
-  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
+  PetscCheck(version == ADH_CHECKPOINT_VERSION || version == 5, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version 5 or %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) {
     PetscBool same = PETSC_FALSE;
@@ -256,7 +263,18 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "e", PETSC_REAL, NULL, &s->e));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "pulled_off", PETSC_INT, NULL, &pulled));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "joined_previous", PETSC_INT, NULL, &s->joined_previous));
-  s->pulled_off = (PetscBool)(pulled != 0);
+  s->pulled_off        = (PetscBool)(pulled != 0);
+  s->restart_output[0] = 0;
+  {
+    PetscBool has;
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/", "output", &has));
+    if (has) {
+      char *output = NULL;
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "output", PETSC_STRING, NULL, &output));
+      PetscCall(PetscStrncpy(s->restart_output, output, sizeof(s->restart_output)));
+      PetscCall(PetscFree(output));
+    }
+  }
   PetscCall(PetscViewerHDF5PushGroup(v, "/state"));
   PetscCall(VecLoad(s->p, v));
   PetscCall(VecDuplicate(s->p, &mask));

@@ -229,6 +229,15 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
 
   PetscFunctionBegin;
   *reason = KSP_CONVERGED_ITERATING;
+  {
+    /* a signal stops the path within an iteration: the solve ends here, marked by stop_signal */
+    PetscBool stop;
+    PetscCall(AdhSolverStopRequested_Private(s, &stop));
+    if (stop) {
+      *reason = KSP_DIVERGED_NULL;
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxits));
   if (PetscIsInfOrNanReal(rnorm)) {
     *reason = KSP_DIVERGED_NANORINF;
@@ -315,6 +324,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;
+  if (s->stoppable && s->stop_signal) PetscFunctionReturn(PETSC_ERR_SIG); /* stopped: the step is abandoned */
   PetscCall(VecGetArray(x, &xw));
   PetscCall(VecGetArrayRead(s->pC, &xa));
   for (k = 0; k < s->nset_local; k++) xw[s->set_local[k]] = xa[k];
@@ -470,6 +480,7 @@ PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
   if (s->predict && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->predict(s, PETSC_FALSE, d));
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
+    AdhSolverCheckStop_Private(s);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));

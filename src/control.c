@@ -128,6 +128,7 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
     PetscReal   de;
 
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set for the force %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)F, s->max_outer);
+    AdhSolverCheckStop_Private(s);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, s->e, s->h, PETSC_FALSE));
     PetscCall(VecSum(s->p, &Fp));
@@ -277,7 +278,8 @@ PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
 /* One step to the target (d, or F under force control), with its counts. */
 PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
 {
-  PetscInt mults0, mults1, ffts0, ffts1;
+  PetscInt       mults0, mults1, ffts0, ffts1;
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
@@ -291,7 +293,12 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
     /* The last step ended in pull-off: the bodies are apart now. */
     PetscCall(AdhSolverClearContact_Private(s));
   }
-  PetscCall(s->cops.step(s, target));
+  ierr = s->cops.step(s, target);
+  if (ierr == PETSC_ERR_SIG && s->stoppable && s->stop_signal) { /* stopped by a signal: the step is abandoned */
+    PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
+    PetscFunctionReturn(ierr);
+  }
+  PetscCall(ierr);
   if (s->u) { /* a displacement handed out before follows the state */
     Vec u;
     PetscCall(AdhSolverGetDisplacement_Private(s, &u));

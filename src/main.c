@@ -1,6 +1,8 @@
 /* adhbem: run an indentation path of an adhesive contact and write the curve.
    mpirun -n P build/adhbem [options] (or -options_file job.opts); -help lists the options. */
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 #include "adhbem.h"
 
 static const char help[] = "adhbem: adhesive normal contact of elastic solids with the boundary element method\n"
@@ -23,7 +25,8 @@ static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, con
   MPI_Comm_size(PETSC_COMM_WORLD, &world);
   error_on_every_rank = (PetscBool)(size == world);
   if (rank) return n;
-  if (n == PETSC_ERR_MEM && !(mess && mess[0])) fprintf(stderr, "adhbem: error: out of memory (use a smaller grid or more nodes; -adh_view shows the memory estimate)\n");
+  if (n == PETSC_ERR_SIG && mess && !strncmp(mess, "stopped by signal", 17)) fprintf(stderr, "adhbem: %s\n", mess); /* a stop, not a failure */
+  else if (n == PETSC_ERR_MEM && !(mess && mess[0])) fprintf(stderr, "adhbem: error: out of memory (use a smaller grid or more nodes; -adh_view shows the memory estimate)\n");
   else if (n == PETSC_ERR_MEM) fprintf(stderr, "adhbem: error: not enough memory: %s\n", mess);
   else if (mess && mess[0]) fprintf(stderr, "adhbem: error: %s\n", mess);
   else {
@@ -33,6 +36,63 @@ static PetscErrorCode ErrorOneLine(MPI_Comm comm, int line, const char *fun, con
   }
   fflush(stderr);
   return n;
+}
+
+/* Open MPI's own MPI-IO (ompio), which HDF5 writes through, opens a shared-file-pointer
+   component along with every file, though adhbem never uses shared file pointers: "sm" guards
+   each file with a named semaphore keyed on the file's base name alone (a job killed while it
+   held one leaves it locked in /dev/shm, and every later run that writes a file of that name
+   waits on it forever), "lockedfile" creates FILE-JOBID-PID.lock beside it and "individual"
+   FILE.data.RANK and FILE.metadata.RANK, all left behind by a killed job (checked: SIGKILL of a
+   job writing its results). ROMIO, Open MPI's other MPI-IO, creates nothing beside the file: it
+   is asked for unless the user chose, and the "sm" component is kept out for a user who asks
+   for ompio. */
+static void AvoidStaleLocks(void)
+{
+#if defined(OPEN_MPI)
+  setenv("OMPI_MCA_io", "^ompio", 0);
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
+#endif
+}
+
+/* -options_file names a file that is not there: one line, not PETSc's dump from within its
+   initialisation (printed by the first rank; every rank stops before MPI starts). */
+static int CheckOptionsFiles(int argc, char **argv)
+{
+  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+
+  if (!rank) rank = getenv("PMI_RANK");
+  if (!rank) rank = getenv("PMIX_RANK");
+  for (int k = 1; k < argc; k++) {
+    const char *file = k + 1 < argc ? argv[k + 1] : NULL;
+    if (strcmp(argv[k], "-options_file")) continue;
+    if (file && file[0] != '-' && !access(file, R_OK)) continue;
+    if (!rank || !strcmp(rank, "0")) {
+      if (!file || file[0] == '-') fprintf(stderr, "adhbem: error: -options_file needs a file name\n");
+      else fprintf(stderr, "adhbem: error: -options_file %s: no such file (or not readable)\n", file);
+    }
+    return 1;
+  }
+  return 0;
+}
+
+/* PETSc's KSP and PC options without adhbem's prefix (-ksp_rtol) do nothing: the solver's KSP
+   reads -adh_ksp_*. Nothing else in the executable reads them. */
+static PetscErrorCode CheckUnprefixedOptions(void)
+{
+  PetscInt n;
+  char   **names, **values;
+  char     message[512] = "";
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n && !message[0]; k++) {
+    const char *name = names[k][0] == '-' ? names[k] + 1 : names[k];
+    if (!strncmp(name, "ksp_", 4) || !strncmp(name, "pc_", 3)) PetscCall(PetscSNPrintf(message, sizeof(message), "-%s does nothing: the solver's KSP and PC options have the prefix adh_ (-adh_%s)", name, name));
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!message[0], PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "%s", message);
+  PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Run(AdhSolver solver)
@@ -53,6 +113,7 @@ static PetscErrorCode Run(AdhSolver solver)
     PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
+  PetscCall(CheckUnprefixedOptions());
   if (view) PetscCall(AdhSolverView(solver, NULL));
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
@@ -75,25 +136,14 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscFunctionReturn(0);
 }
 
-/* Open MPI's "sm" shared-file-pointer component, which its MPI-IO opens along with every file
-   HDF5 writes, guards each file with a named semaphore keyed on the file's base name alone. A job
-   killed while it held one (a batch job's SIGKILL during a write) leaves it locked in /dev/shm,
-   and every later run that writes a file of that name waits on it forever. adhbem never uses
-   shared file pointers, so it asks for the others (which lock with fcntl) unless the user chose. */
-static void AvoidStaleSemaphores(void)
-{
-#if defined(OPEN_MPI)
-  setenv("OMPI_MCA_sharedfp", "^sm", 0);
-#endif
-}
-
 int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscBool      traceback = PETSC_FALSE;
   AdhSolver      solver;
 
-  AvoidStaleSemaphores();
+  AvoidStaleLocks();
+  if (CheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));

@@ -84,3 +84,51 @@ PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver s)
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(0);
 }
+
+/* PETSc options that the solver's KSP reads only during a solve (KSPSolve's views and reports),
+   and the common ones, for the nearest name of a misspelled one. */
+static const char *const SolveTimePrefixes[] = {"ksp_view", "ksp_converged_reason", "ksp_converged_rate", "ksp_compute_", "ksp_plot_", "ksp_final_residual", NULL};
+static const char *const KSPOptionNames[]    = {"ksp_rtol", "ksp_atol", "ksp_divtol", "ksp_max_it", "ksp_type", "ksp_norm_type", "ksp_monitor", "ksp_monitor_short", "ksp_monitor_true_residual", "ksp_converged_reason", "ksp_view", "ksp_error_if_not_converged", "ksp_initial_guess_nonzero", "ksp_pc_side", "ksp_compute_eigenvalues", "ksp_view_final_residual", "pc_type", NULL};
+
+/* After the KSP's set-up from the options: every -adh_ksp_ and -adh_pc_ option under this solver's
+   prefix that neither it nor a solve reads (misspelled, or of another KSP type) is an error naming
+   it, before any solve. */
+PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver s)
+{
+  PetscInt    n;
+  char      **names, **values, message[512] = "";
+  size_t      plen   = 0;
+  const char *prefix = s->prefix ? s->prefix : "";
+  KSPType     type;
+
+  PetscFunctionBegin;
+  PetscCall(KSPGetType(s->ksp, &type));
+  PetscCall(PetscStrlen(prefix, &plen));
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n && !message[0]; k++) {
+    const char *name = names[k][0] == '-' ? names[k] + 1 : names[k], *inner;
+    PetscBool   ours, ksp, pc, later = PETSC_FALSE;
+    PetscInt    best = PETSC_MAX_INT, nearest = 0;
+    PetscCall(PetscStrncmp(name, prefix, plen, &ours));
+    if (!ours) continue;
+    name += plen;
+    PetscCall(PetscStrncmp(name, "adh_ksp_", 8, &ksp));
+    PetscCall(PetscStrncmp(name, "adh_pc_", 7, &pc));
+    if (!ksp && !pc) continue;
+    inner = name + 4;
+    for (const char *const *p = SolveTimePrefixes; *p && !later; p++) PetscCall(PetscStrncmp(inner, *p, strlen(*p), &later));
+    if (later) continue;
+    for (PetscInt o = 0; KSPOptionNames[o]; o++) {
+      const PetscInt dist = EditDistance(inner, KSPOptionNames[o]);
+      if (dist < best) {
+        best    = dist;
+        nearest = o;
+      }
+    }
+    if (best <= 3) PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner (did you mean -%sadh_%s?)", prefix, name, type, prefix, KSPOptionNames[nearest]));
+    else PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner: misspelled, or an option of another KSP or PC type", prefix, name, type));
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!message[0], s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
+  PetscFunctionReturn(0);
+}

@@ -1,7 +1,13 @@
 /* Results: HDF5 through PETSc's viewer (curve in /curve, parameters as root attributes, fields
-   in /fields) and the curve as CSV. Both are written to FILE.part and renamed when complete, so
-   a result file is never half-written and an older one is not lost to a failed run. */
+   in /fields) and the curve as CSV. Both are written to FILE.part as the path goes, and renamed
+   when the run ends, so a finished result file is never half-written and an older one is not
+   lost to a failed run. After each recorded state its curve row and its fields are appended to
+   FILE.h5.part and the file is flushed, and rank 0 appends the row to FILE.csv.part (the journal)
+   and syncs it: whatever kills the job, both hold every state recorded before (adhbem.load reads
+   them). A restart appends to the results of the run it goes on from. */
 #include <errno.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include "solverimpl.h"
 
 static PetscErrorCode PartName(const char file[], char part[], size_t len)
@@ -25,8 +31,8 @@ static PetscErrorCode SiblingName(const char file[], const char ext[], char name
 }
 
 /* Rank 0 makes the file's directory when it is missing (results/ in a fresh clone) and tries to
-   create the file; everyone learns the answer, so a bad path fails before any work with a
-   message that names the option and the file. */
+   create FILE.part (or checks that an existing one is writable); everyone learns the answer, so a
+   bad path fails before any work with a message that names the option and the file. */
 PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], const char file[])
 {
   char        part[PETSC_MAX_PATH_LEN + 8], dir[PETSC_MAX_PATH_LEN], reason[256] = "";
@@ -37,23 +43,34 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], 
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
   if (!rank) {
-    FILE      *fp;
-    char      *slash;
-    PetscBool  exists = PETSC_TRUE;
-    PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
-    slash = strrchr(dir, '/');
-    if (slash && slash != dir) {
-      *slash = 0;
-      PetscCall(PetscTestDirectory(dir, 'w', &exists));
-      if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
-    }
-    fp = fopen(part, "w");
-    if (!fp) {
+    FILE       *fp;
+    char       *slash;
+    PetscBool   exists = PETSC_TRUE;
+    struct stat st;
+    size_t      len;
+    PetscCall(PetscStrlen(file, &len));
+    if ((len && file[len - 1] == '/') || (!stat(file, &st) && S_ISDIR(st.st_mode))) {
+      /* else the run would fail only at its end, renaming its results onto the directory */
       ok = 0;
-      PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      PetscCall(PetscStrncpy(reason, "it is a directory; give a file name (DIR/run.h5)", sizeof(reason)));
     } else {
-      fclose(fp);
-      remove(part);
+      PetscCall(PetscStrncpy(dir, file, sizeof(dir)));
+      slash = strrchr(dir, '/');
+      if (slash && slash != dir) {
+        *slash = 0;
+        PetscCall(PetscTestDirectory(dir, 'w', &exists));
+        if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
+      }
+      if (!access(part, F_OK)) { /* a killed run's results, which a restart goes on in: left as they are */
+        ok = !access(part, W_OK);
+        if (!ok) PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      } else if (!(fp = fopen(part, "w"))) {
+        ok = 0;
+        PetscCall(PetscStrncpy(reason, strerror(errno), sizeof(reason)));
+      } else {
+        fclose(fp);
+        remove(part);
+      }
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
@@ -63,6 +80,7 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], 
 }
 
 static PetscErrorCode WriteSurface(AdhSolver, PetscViewer);
+static PetscErrorCode Begin(AdhSolver, PetscViewer, const char[]);
 
 PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer *viewer)
 {
@@ -72,9 +90,12 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscCall(AdhOutputCheckWritable_Private(s, "-adh_output", file));
   PetscCall(PartName(file, part, sizeof(part)));
   PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, viewer));
+  PetscCall(PetscFree(s->field_states));
+  s->nfield_states = 0;
   /* a rough surface, generated again, goes in now, while the contact set and its solver's vectors
      are small (at the close they may be the largest of the run) */
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(WriteSurface(s, *viewer));
+  PetscCall(Begin(s, *viewer, file));
   PetscFunctionReturn(0);
 }
 
@@ -85,6 +106,45 @@ const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contac
   do { \
     PetscCheck((call) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5: %s failed", #call); \
   } while (0)
+
+/* Rows [from, from + count) of the 1-D float64 dataset `name` of group (created extendible when
+   missing; its extent becomes from + count, which may also shorten it), written by rank 0 from
+   values. Collective. */
+static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], PetscInt from, PetscInt count, const PetscReal *values)
+{
+  hid_t       dset, filespace, memspace;
+  hsize_t     dims[1] = {(hsize_t)(from + count)}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (H5Lexists(group, name, H5P_DEFAULT) <= 0) {
+    hid_t plist;
+    ADH_H5(filespace = H5Screate_simple(1, dims, maxdims));
+    ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
+    ADH_H5(H5Pset_chunk(plist, 1, chunk));
+    ADH_H5(dset = H5Dcreate2(group, name, H5T_NATIVE_DOUBLE, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
+    ADH_H5(H5Pclose(plist));
+    ADH_H5(H5Sclose(filespace));
+  } else {
+    ADH_H5(dset = H5Dopen2(group, name, H5P_DEFAULT));
+    ADH_H5(H5Dset_extent(dset, dims));
+  }
+  if (!rank && count > 0) {
+    double *buf;
+    PetscCall(PetscMalloc1(count, &buf));
+    for (PetscInt k = 0; k < count; k++) buf[k] = (double)values[k];
+    ADH_H5(filespace = H5Dget_space(dset));
+    ADH_H5(memspace = H5Screate_simple(1, n, NULL));
+    ADH_H5(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, offset, NULL, n, NULL));
+    ADH_H5(H5Dwrite(dset, H5T_NATIVE_DOUBLE, memspace, filespace, H5P_DEFAULT, buf));
+    ADH_H5(H5Sclose(memspace));
+    ADH_H5(H5Sclose(filespace));
+    PetscCall(PetscFree(buf));
+  }
+  ADH_H5(H5Dclose(dset));
+  PetscFunctionReturn(0);
+}
 
 /* The contact mask of the current state as frame `frame` of the uint8 dataset contact
    (frames, Ny, Nx) of the viewer's current group: a byte per point where VecView would write 8.
@@ -142,7 +202,7 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
 
 /* The fields chosen by -adh_fields of the current state, curve row `state`, as the next frame of
    /fields (HDF5 timestepping); the first frame also holds the profile h and the critical stress.
-   /fields/state (written at close) maps frames to curve rows. */
+   /fields/state, which maps frames to curve rows, grows with them. */
 PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt state)
 {
   const PetscInt frame = s->nfield_states;
@@ -171,6 +231,13 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
   if (s->fields & ADH_FIELD_GAP) PetscCall(VecView(s->g, viewer));
   PetscCall(PetscViewerHDF5PopTimestepping(viewer));
   if (s->fields & ADH_FIELD_CONTACT) PetscCall(WriteContactMask(s, viewer, frame));
+  {
+    const PetscReal row = (PetscReal)state;
+    hid_t           file_id, group;
+    PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file_id, &group));
+    PetscCall(AppendRows(s, group, "state", frame, 1, &row));
+    ADH_H5(H5Gclose(group));
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
 }
@@ -216,6 +283,30 @@ static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
   PetscFunctionReturn(0);
 }
 
+/* The pull-off force (the largest tension carried, -min F; 0: none) of curve row k, and how well
+   the grid resolves it (the curve's statistics at that state; absent without tension). */
+static PetscErrorCode WritePullOff(AdhSolver s, PetscViewer v, PetscInt k)
+{
+  const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved"};
+  PetscReal         pull_off     = k >= 0 ? -s->curve.state[k].force : 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
+  if (k >= 0) {
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[0], PETSC_REAL, &s->curve.state[k].small_patch_tension));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[1], PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[2], PETSC_BOOL, &(PetscBool){AdhSolverResolves_Private(s, &s->curve.state[k])}));
+  } else { /* a restart's file may hold those of states after its checkpoint */
+    hid_t file_id;
+    PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
+    for (PetscInt j = 0; j < 3; j++)
+      if (H5Aexists_by_name(file_id, "/", resolution[j], H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", resolution[j], H5P_DEFAULT));
+  }
+  s->pull_off_written = k;
+  PetscFunctionReturn(0);
+}
+
+/* The parameters of the run, as root attributes. */
 static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
 {
   const AdhGrid g = s->grid;
@@ -224,12 +315,8 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscReal     rtol, atol, dtol;
   PetscInt      maxits;
   KSPType       ksptype;
-  PetscReal     pull_off = 0.0; /* the largest tension carried, -min F (0: none) */
-  PetscInt      k;
 
   PetscFunctionBegin;
-  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
-  if (k >= 0) pull_off = -s->curve.state[k].force;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   nranks = size;
   PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
@@ -257,13 +344,7 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "control", PETSC_STRING, s->control_type));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion", PETSC_STRING, s->criterion_type));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius", PETSC_REAL, &s->criterion_radius));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
   if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
-  if (k >= 0) { /* how well the grid resolves it (the curve's statistics at that state) */
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_small_patch_tension", PETSC_REAL, &s->curve.state[k].small_patch_tension));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_smallest_tensile_patch", PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "adhesion_resolved", PETSC_BOOL, &(PetscBool){AdhSolverResolves_Private(s, &s->curve.state[k])}));
-  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));
@@ -304,22 +385,91 @@ static PetscErrorCode WriteTextFile(AdhSolver s, const char name[], void (*body)
   PetscFunctionReturn(0);
 }
 
-/* The curve as CSV: a step column, then one column per curve column. */
-static void CSVBody(AdhSolver s, const char h5[], FILE *fp)
+/* The journal FILE.csv.part: the curve as CSV (a step column, then one column per curve column),
+   its header written when the results file is opened and a row appended and synced by rank 0
+   after each recorded state; renamed FILE.csv when the run ends. */
+static PetscErrorCode JournalName(const char file[], char name[], size_t len)
 {
-  const AdhCurve *c = &s->curve;
+  char csv[PETSC_MAX_PATH_LEN + 8];
 
-  fprintf(fp, "step");
-  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
-  fprintf(fp, "\n");
-  for (PetscInt k = 0; k < c->n; k++) {
-    fprintf(fp, "%" PetscInt_FMT, k);
-    for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-      if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&c->state[k], j));
-      else fprintf(fp, ",%.17g", (double)AdhStateValue(&c->state[k], j));
+  PetscFunctionBegin;
+  PetscCall(SiblingName(file, "csv", csv, sizeof(csv)));
+  PetscCall(PartName(csv, name, len));
+  PetscFunctionReturn(0);
+}
+
+/* Rank 0 writes and syncs rows [from, to) of the curve (from < 0: the header first); every rank
+   learns whether it worked. */
+static PetscErrorCode JournalWrite(AdhSolver s, PetscInt from, PetscInt to)
+{
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (!rank) {
+    FILE *fp = s->journal;
+    if (from < 0) {
+      fprintf(fp, "step");
+      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
+      fprintf(fp, "\n");
+      from = 0;
     }
-    fprintf(fp, "\n");
+    for (PetscInt k = from; k < to; k++) {
+      fprintf(fp, "%" PetscInt_FMT, k);
+      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+        if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&s->curve.state[k], j));
+        else fprintf(fp, ",%.17g", (double)AdhStateValue(&s->curve.state[k], j));
+      }
+      fprintf(fp, "\n");
+    }
+    ok = fflush(fp) == 0 && !ferror(fp) && fsync(fileno(fp)) == 0;
   }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write the curve to %s", s->output);
+  PetscFunctionReturn(0);
+}
+
+/* A new journal for the results file `file`, with its header. */
+static PetscErrorCode JournalOpen(AdhSolver s, const char file[])
+{
+  char        name[PETSC_MAX_PATH_LEN + 16];
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(JournalName(file, name, sizeof(name)));
+  if (!rank) {
+    if (s->journal) fclose(s->journal);
+    s->journal = fopen(name, "w");
+    ok         = s->journal != NULL;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_OPEN, "-adh_output: cannot write %s", name);
+  PetscCall(JournalWrite(s, -1, 0));
+  PetscFunctionReturn(0);
+}
+
+/* FILE.csv.part closed and renamed FILE.csv. */
+static PetscErrorCode JournalClose(AdhSolver s, const char file[])
+{
+  char        name[PETSC_MAX_PATH_LEN + 16], csv[PETSC_MAX_PATH_LEN + 8];
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(JournalName(file, name, sizeof(name)));
+  PetscCall(SiblingName(file, "csv", csv, sizeof(csv)));
+  if (!rank) {
+    ok         = s->journal && fclose(s->journal) == 0;
+    s->journal = NULL;
+    ok         = ok && rename(name, csv) == 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write %s", csv);
+  PetscFunctionReturn(0);
 }
 
 /* FILE.xmf beside FILE.h5 when it has fields: an XDMF description that ParaView (and VisIt) open
@@ -379,35 +529,261 @@ PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver s, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+/* What a results file holds before its first state: the parameters, complete = 0, the curve's
+   columns (empty) and the path; and the journal with its header. */
+static PetscErrorCode Begin(AdhSolver s, PetscViewer v, const char file[])
 {
-  char            part[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], xmf[PETSC_MAX_PATH_LEN + 8];
-  PetscMPIInt     rank;
-  int             ok = 1;
-  PetscReal      *column;
+  hid_t file_id, group;
 
   PetscFunctionBegin;
-  PetscCall(WriteAttributes(s, *viewer));
-  PetscCall(PetscViewerHDF5PushGroup(*viewer, "/curve"));
-  PetscCall(AdhOutputWriteCurve_Private(s, *viewer));
-  PetscCall(PetscViewerHDF5PopGroup(*viewer));
-  if (s->nfield_states) {
-    PetscCall(PetscMalloc1(s->nfield_states, &column));
-    for (PetscInt k = 0; k < s->nfield_states; k++) column[k] = (PetscReal)s->field_states[k];
-    PetscCall(PetscViewerHDF5PushGroup(*viewer, "/fields"));
-    PetscCall(WriteRealArray(s, *viewer, "state", s->nfield_states, column));
-    PetscCall(PetscViewerHDF5PopGroup(*viewer));
+  PetscCall(WriteAttributes(s, v));
+  PetscCall(WritePullOff(s, v, -1));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_FALSE}));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
+  PetscCall(PetscViewerHDF5OpenGroup(v, NULL, &file_id, &group));
+  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+    /* a restart's file: its rows are written again from the checkpoint's curve */
+    if (H5Lexists(group, AdhCurveColumns[j].name, H5P_DEFAULT) > 0) ADH_H5(H5Ldelete(group, AdhCurveColumns[j].name, H5P_DEFAULT));
+    PetscCall(AppendRows(s, group, AdhCurveColumns[j].name, 0, 0, NULL));
+  }
+  ADH_H5(H5Gclose(group));
+  PetscCall(WriteRealArray(s, v, "path", s->npath, s->path));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
+  s->rows_written = 0;
+  PetscCall(JournalOpen(s, file));
+  PetscFunctionReturn(0);
+}
+
+/* The states recorded since the last call into the results file and the journal, flushed: after
+   it, both hold every recorded state whatever happens to the job. */
+PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
+{
+  const PetscInt from = s->rows_written, n = s->curve.n;
+  hid_t          file_id, group;
+  PetscInt       k;
+
+  PetscFunctionBegin;
+  if (n > from) {
+    PetscReal *column;
+    PetscCall(PetscMalloc1(n - from, &column));
+    PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
+    PetscCall(PetscViewerHDF5OpenGroup(v, NULL, &file_id, &group));
+    for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+      for (k = from; k < n; k++) column[k - from] = AdhStateValue(&s->curve.state[k], j);
+      PetscCall(AppendRows(s, group, AdhCurveColumns[j].name, from, n - from, column));
+    }
+    ADH_H5(H5Gclose(group));
+    PetscCall(PetscViewerHDF5PopGroup(v));
     PetscCall(PetscFree(column));
   }
+  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
+  if (k != s->pull_off_written) PetscCall(WritePullOff(s, v, k));
+  PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
+  ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
+  PetscCall(JournalWrite(s, from, n));
+  s->rows_written = n;
+  PetscFunctionReturn(0);
+}
 
+/* The field datasets of the open group: which of AdhFieldNames[] it has, as ADH_FIELD_* bits. */
+static PetscInt FieldsIn(hid_t group)
+{
+  PetscInt have = 0;
+  for (PetscInt f = 0; f < 4; f++)
+    if (H5Lexists(group, AdhFieldNames[f], H5P_DEFAULT) > 0) have |= 1 << f;
+  return have;
+}
+
+/* A list of the fields in mask, for messages. */
+static void FieldList(PetscInt mask, char *text, size_t len)
+{
+  text[0] = 0;
+  for (PetscInt f = 0; f < 4; f++)
+    if (mask & (1 << f)) {
+      if (text[0]) strncat(text, ",", len - strlen(text) - 1);
+      strncat(text, AdhFieldNames[f], len - strlen(text) - 1);
+    }
+  if (!text[0]) strncat(text, "none", len - 1);
+}
+
+/* The earlier run's results file (open in v) taken over after the checkpoint's states: the curve
+   is written again from the checkpoint, the frames of states after it are dropped; kept: the
+   frames left. A file that does not fit this run is left alone and `unfit` says why. */
+static PetscErrorCode TakeOver(AdhSolver s, PetscViewer v, const char file[], PetscInt *kept, char unfit[], size_t len)
+{
+  const PetscInt n = s->curve.n;
+  hid_t          file_id, group;
+  PetscInt       Nx = -1, Ny = -1, have = 0, frames = 0;
+  PetscBool      has;
+  PetscReal     *states = NULL;
+
+  PetscFunctionBegin;
+  *kept    = 0;
+  unfit[0] = 0;
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "Nx", &has));
+  if (has) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "Nx", PETSC_INT, NULL, &Nx));
+  if (has) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "Ny", PETSC_INT, NULL, &Ny));
+  if (Nx != s->grid->Nx || Ny != s->grid->Ny) {
+    PetscCall(PetscSNPrintf(unfit, len, "-adh_restart: the earlier results %s are not those of this problem (grid %" PetscInt_FMT " x %" PetscInt_FMT "); give another -adh_output", file, Nx, Ny));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscViewerHDF5HasGroup(v, "/fields", &has));
+  if (has) {
+    PetscCall(PetscViewerHDF5PushGroup(v, "/fields"));
+    PetscCall(PetscViewerHDF5OpenGroup(v, NULL, &file_id, &group));
+    have = FieldsIn(group);
+    if (have == s->fields && have) {
+      hid_t   dset, space;
+      hsize_t dims[1] = {0};
+      if (H5Lexists(group, "state", H5P_DEFAULT) > 0) {
+        ADH_H5(dset = H5Dopen2(group, "state", H5P_DEFAULT));
+        ADH_H5(space = H5Dget_space(dset));
+        ADH_H5(H5Sget_simple_extent_dims(space, dims, NULL));
+        PetscCall(PetscMalloc1(dims[0] + 1, &states));
+        if (dims[0]) ADH_H5(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, states));
+        ADH_H5(H5Sclose(space));
+        ADH_H5(H5Dclose(dset));
+        ADH_H5(H5Ldelete(group, "state", H5P_DEFAULT));
+      }
+      /* the frames are in the order of their states: keep those of the checkpoint's states */
+      for (frames = 0; frames < (PetscInt)dims[0] && states[frames] < n; frames++) continue;
+      /* shorten the field datasets to them (their first dimension is the frame) */
+      for (PetscInt f = 0; f < 4; f++) {
+        hid_t   fset, fspace;
+        hsize_t fdims[8];
+        int     ndims;
+        if (!(have & (1 << f))) continue;
+        ADH_H5(fset = H5Dopen2(group, AdhFieldNames[f], H5P_DEFAULT));
+        ADH_H5(fspace = H5Dget_space(fset));
+        ADH_H5(ndims = H5Sget_simple_extent_ndims(fspace));
+        PetscCheck(ndims >= 1 && ndims <= 8, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: field %s has %d dimensions", file, AdhFieldNames[f], ndims);
+        ADH_H5(H5Sget_simple_extent_dims(fspace, fdims, NULL));
+        fdims[0] = (hsize_t)frames;
+        ADH_H5(H5Dset_extent(fset, fdims));
+        ADH_H5(H5Sclose(fspace));
+        ADH_H5(H5Dclose(fset));
+      }
+      PetscCall(AppendRows(s, group, "state", 0, frames, states));
+    }
+    ADH_H5(H5Gclose(group));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+  }
+  if (have != s->fields) {
+    char theirs[64], ours[64];
+    FieldList(have, theirs, sizeof(theirs));
+    FieldList(s->fields, ours, sizeof(ours));
+    PetscCall(PetscSNPrintf(unfit, len, "-adh_restart: the earlier results %s have the fields %s, this run's -adh_fields %s: give the same -adh_fields to go on in that file, or another -adh_output to keep it as it is", file, theirs, ours));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscFree(s->field_states));
+  PetscCall(PetscMalloc1(frames + 1, &s->field_states));
+  for (PetscInt k = 0; k < frames; k++) s->field_states[k] = (PetscInt)states[k];
+  s->nfield_states = frames;
+  PetscCall(PetscFree(states));
+  *kept = frames;
+  PetscFunctionReturn(0);
+}
+
+/* A restart's results: the results file of the run the checkpoint comes from, when it is this
+   run's -adh_output (FILE.h5, or FILE.h5.part if that run was killed), goes on after the
+   checkpoint's states, with their fields; otherwise a new file. One line says which. */
+PetscErrorCode AdhOutputResume_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+{
+  char           part[PETSC_MAX_PATH_LEN + 8], full[PETSC_MAX_PATH_LEN], has[128];
+  const char    *earlier = s->restart_output[0] ? s->restart_output : full;
+  const PetscInt last    = s->curve.n - 1;
+  PetscBool      same;
+  PetscMPIInt    rank;
+  int            found = 0, damaged = 0; /* found 1: FILE.part, 2: FILE (moved to FILE.part) */
+  PetscErrorCode ierr;
+  PetscInt       kept = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (s->fields) PetscCall(PetscSNPrintf(has, sizeof(has), "has the curve from state 0 and the fields from state %" PetscInt_FMT " on", last + 1));
+  else PetscCall(PetscSNPrintf(has, sizeof(has), "has the curve from state 0"));
+  PetscCall(PetscGetFullPath(file, full, sizeof(full))); /* the checkpoint names the file in full */
+  PetscCall(PetscStrcmp(earlier, full, &same));
+  if (!same) {
+    PetscCall(AdhOutputOpen_Private(s, file, viewer));
+    PetscCall(AdhOutputAppend_Private(s, *viewer));
+    PetscCall(PetscPrintf(s->comm, "adhbem: restart after state %" PetscInt_FMT ": %s %s; those of the earlier states are in the earlier run's %s\n", last, file, has, earlier));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(AdhOutputCheckWritable_Private(s, "-adh_output", file));
+  PetscCall(PartName(file, part, sizeof(part)));
+  if (!rank) {
+    if (!access(part, F_OK)) found = 1;
+    else if (!access(file, F_OK) && !rename(file, part)) found = 2;
+    if (found) {
+      /* a file cut short by a kill may not open (HDF5 would say why: quiet here); it is replaced */
+      H5E_auto2_t report;
+      void       *data;
+      hid_t       f;
+      ADH_H5(H5Eget_auto2(H5E_DEFAULT, &report, &data));
+      ADH_H5(H5Eset_auto2(H5E_DEFAULT, NULL, NULL));
+      f       = H5Fopen(part, H5F_ACC_RDONLY, H5P_DEFAULT);
+      damaged = f < 0;
+      if (f >= 0) H5Fclose(f);
+      ADH_H5(H5Eset_auto2(H5E_DEFAULT, report, data));
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&found, 1, MPI_INT, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(&damaged, 1, MPI_INT, 0, s->comm));
+  if (found && !damaged) {
+    char unfit[PETSC_MAX_PATH_LEN + 256];
+    PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_APPEND, viewer));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = TakeOver(s, *viewer, file, &kept, unfit, sizeof(unfit));
+    PetscCall(PetscPopErrorHandler());
+    if (!ierr && unfit[0]) {
+      /* the file is whole but not this run's: left as it was, and the run refused */
+      PetscCall(PetscViewerDestroy(viewer));
+      if (!rank && found == 2) (void)rename(part, file);
+      SETERRQ(s->comm, PETSC_ERR_ARG_INCOMP, "%s", unfit);
+    }
+    if (ierr) { /* opened, but not all of it reads */
+      PetscCall(PetscViewerDestroy(viewer));
+      damaged = 1;
+    }
+  }
+  if (!found || damaged) {
+    PetscCall(AdhOutputOpen_Private(s, file, viewer));
+    PetscCall(AdhOutputAppend_Private(s, *viewer));
+    if (damaged) PetscCall(PetscPrintf(s->comm, "adhbem: restart after state %" PetscInt_FMT ": the earlier results %s could not be read (cut short when the run was killed?) and are replaced: %s %s\n", last, part, file, has));
+    else PetscCall(PetscPrintf(s->comm, "adhbem: restart after state %" PetscInt_FMT ": %s %s (the earlier results were not there to keep)\n", last, file, has));
+    PetscFunctionReturn(0);
+  }
+  if (!rank) { /* what the earlier run wrote at its end is written again at this one's */
+    char name[PETSC_MAX_PATH_LEN + 8];
+    PetscCall(SiblingName(file, "csv", name, sizeof(name)));
+    (void)remove(name);
+    PetscCall(SiblingName(file, "xmf", name, sizeof(name)));
+    (void)remove(name);
+  }
+  PetscCall(Begin(s, *viewer, file));
+  PetscCall(AdhOutputAppend_Private(s, *viewer));
+  if (s->fields) PetscCall(PetscPrintf(s->comm, "adhbem: restart after state %" PetscInt_FMT ": %s goes on, with the curve and the fields of the earlier states (%" PetscInt_FMT " frames)\n", last, file, kept));
+  else PetscCall(PetscPrintf(s->comm, "adhbem: restart after state %" PetscInt_FMT ": %s goes on, with the curve of the earlier states\n", last, file));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewer *viewer)
+{
+  char        part[PETSC_MAX_PATH_LEN + 8], xmf[PETSC_MAX_PATH_LEN + 8];
+  PetscMPIInt rank;
+  int         ok = 1;
+
+  PetscFunctionBegin;
+  PetscCall(AdhOutputAppend_Private(s, *viewer));
   PetscCall(PetscViewerDestroy(viewer));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(PartName(file, part, sizeof(part)));
   if (!rank) ok = rename(part, file) == 0;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s", part, file);
-  PetscCall(SiblingName(file, "csv", csv, sizeof(csv)));
-  PetscCall(WriteTextFile(s, csv, CSVBody, NULL));
+  PetscCall(JournalClose(s, file));
   if (s->nfield_states) {
     /* the XDMF names the HDF5 file without its directory: the pair can move together */
     PetscCall(SiblingName(file, "xmf", xmf, sizeof(xmf)));

@@ -1,6 +1,7 @@
 /* Paths: the starting state, the legs of -adh_path (indentations, or forces under force
    control), and the recorded curve. */
 #include <signal.h>
+#include <time.h>
 #include "solverimpl.h"
 
 #define COLUMN(name, integer) {#name, offsetof(AdhState, name), integer}
@@ -76,11 +77,14 @@ PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBo
   PetscFunctionReturn(0);
 }
 
-/* The adhesion-free start carries no tension: under force control its force must be >= 0. */
+/* Under force control the first force must be >= 0: the adhesion-free start carries no tension,
+   and the adhesive start loads from first touch, where nothing holds the bodies together yet (a
+   tension there would be a pull-off of the unpressed contact, and the next states, apart, F = 0). */
 static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
 {
   PetscFunctionBegin;
   PetscCheck(s->start != ADH_START_HERTZ || !s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+  PetscCheck(!s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, a tension the start cannot reach: -adh_start adhesive loads from first touch, where the contact carries none; start from a compressive force (or 0) and pull in a later leg (-adh_path 0.01,%g)", (double)target, (double)target);
   PetscFunctionReturn(0);
 }
 
@@ -182,7 +186,8 @@ PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhStat
   PetscFunctionReturn(0);
 }
 
-/* Appends the current state to the curve, calls the monitors, writes its fields. */
+/* Appends the current state to the curve and to the results file (its fields too), calls the
+   monitors. */
 static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
 {
   AdhState       st;
@@ -194,6 +199,7 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   st.seconds = (PetscReal)(t1 - t0);
   PetscCall(AdhCurveAppend_Private(&s->curve, &st));
   if (viewer && (s->curve.n - 1) % s->fields_stride == 0) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
+  if (viewer) PetscCall(AdhOutputAppend_Private(s, viewer));
   for (PetscInt k = 0; k < s->nmonitors; k++) {
     /* a monitor that fails on one rank stops every rank, not just that one */
     int err = (int)s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]);
@@ -203,29 +209,42 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* SIGTERM and SIGINT (what batch systems send before the kill) end the path after the current
-   step: the flag is read after each recorded state, by every rank together. */
+/* SIGTERM and SIGINT (what batch systems send before the kill, and what mpirun passes on to the
+   ranks when it gets either, killing them a second later) stop the path: the flag is read by
+   every rank together in each iteration of the solves, in each set update and after each
+   recorded state, and the step in progress is abandoned. The time it came is kept to say how
+   long the stop took. */
 static volatile sig_atomic_t adh_signal = 0;
+static struct timespec       adh_signal_time;
 
 static void OnSignal(int sig)
 {
+  if (!adh_signal) clock_gettime(CLOCK_MONOTONIC, &adh_signal_time); /* async-signal-safe */
   adh_signal = sig;
+}
+
+PetscErrorCode AdhSolverStopRequested_Private(AdhSolver s, PetscBool *stop)
+{
+  int sig;
+
+  PetscFunctionBegin;
+  *stop = PETSC_FALSE;
+  if (!s->stoppable) PetscFunctionReturn(0);
+  sig = (int)adh_signal;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, s->comm));
+  if (sig) {
+    s->stop_signal = sig;
+    *stop          = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
 }
 
 /* After the state at (leg, step): the checkpoint when one is due, and the stop on a signal. */
 static PetscErrorCode AfterRecord(AdhSolver s, PetscInt leg, PetscInt step)
 {
-  int sig = (int)adh_signal;
-
   PetscFunctionBegin;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, s->comm));
-  if (s->checkpoint[0] && (sig || (s->curve.n - 1) % s->checkpoint_every == 0)) PetscCall(AdhCheckpointWrite_Private(s, leg, step));
-  if (sig) {
-    char how[PETSC_MAX_PATH_LEN + 128];
-    if (s->checkpoint[0]) PetscCall(PetscSNPrintf(how, sizeof(how), "go on with the same options and -adh_restart %s", s->checkpoint));
-    else PetscCall(PetscSNPrintf(how, sizeof(how), "with -adh_checkpoint FILE a run can go on from where it stopped"));
-    SETERRQ(s->comm, PETSC_ERR_SIG, "Stopped by signal %d after state %" PetscInt_FMT "; the results so far are in %s (complete = 0); %s", sig, s->curve.n - 1, s->output[0] ? s->output : "(no -adh_output)", how);
-  }
+  if (s->checkpoint[0] && (s->curve.n - 1) % s->checkpoint_every == 0) PetscCall(AdhCheckpointWrite_Private(s, leg, step));
+  AdhSolverCheckStop_Private(s);
   PetscFunctionReturn(0);
 }
 
@@ -288,33 +307,88 @@ static PetscErrorCode CheckPath(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* The line that ends a path stopped by a signal: which state the results end with, where they
+   are, how long the stop took, and how to go on. */
+static PetscErrorCode StopMessage(AdhSolver s, char msg[], size_t len)
+{
+  const PetscInt  last = s->curve.n - 1;
+  struct timespec now;
+  double          took = -1.0;
+  char            where[PETSC_MAX_PATH_LEN + 64], how[PETSC_MAX_PATH_LEN + 128], after[64];
+
+  PetscFunctionBegin;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  if (adh_signal) took = (double)(now.tv_sec - adh_signal_time.tv_sec) + 1e-9 * (double)(now.tv_nsec - adh_signal_time.tv_nsec);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &took, 1, MPI_DOUBLE, MPI_MAX, s->comm));
+  if (last >= 0) PetscCall(PetscSNPrintf(after, sizeof(after), "after state %" PetscInt_FMT, last));
+  else PetscCall(PetscSNPrintf(after, sizeof(after), "before the first state"));
+  if (!s->output[0]) PetscCall(PetscSNPrintf(where, sizeof(where), "no results file (-adh_output)"));
+  else if (last >= 0) PetscCall(PetscSNPrintf(where, sizeof(where), "results up to it in %s (complete = 0)", s->output));
+  else PetscCall(PetscSNPrintf(where, sizeof(where), "%s holds no state (complete = 0)", s->output));
+  if (!s->checkpoint[0]) PetscCall(PetscSNPrintf(how, sizeof(how), "with -adh_checkpoint FILE a run can go on from where it stopped"));
+  else if (s->checkpoint_state < 0) PetscCall(PetscSNPrintf(how, sizeof(how), "no checkpoint was written yet"));
+  else if (s->checkpoint_state == last) PetscCall(PetscSNPrintf(how, sizeof(how), "go on with the same options and -adh_restart %s", s->checkpoint));
+  else PetscCall(PetscSNPrintf(how, sizeof(how), "go on from state %" PetscInt_FMT " with the same options and -adh_restart %s (-adh_checkpoint_every %" PetscInt_FMT ")", s->checkpoint_state, s->checkpoint, s->checkpoint_every));
+  if (took >= 0) PetscCall(PetscSNPrintf(msg, len, "stopped by signal %d %s (%.2f s after the signal); %s; %s", s->stop_signal, after, took, where, how));
+  else PetscCall(PetscSNPrintf(msg, len, "stopped by signal %d %s; %s; %s", s->stop_signal, after, where, how));
+  PetscFunctionReturn(0);
+}
+
+/* The path with the results file open (viewer; NULL: none): every recorded state is in it. */
+static PetscErrorCode SolvePathOpen(AdhSolver s, PetscViewer *viewer, PetscInt leg0, PetscInt step0)
+{
+  PetscFunctionBegin;
+  if (s->output[0] && s->restart[0]) PetscCall(AdhOutputResume_Private(s, s->output, viewer));
+  else if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, viewer));
+  PetscCall(SolvePathInner(s, *viewer, leg0, step0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 {
   PetscViewer    viewer = NULL;
-  PetscErrorCode ierr;
+  PetscErrorCode ierr, cerr = 0;
   PetscInt       leg0 = 1, step0 = 0;
+  void (*term)(int), (*intr)(int);
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));
+  s->checkpoint_state = -1;
   /* a checkpoint that does not fit is refused before a results file is opened */
-  if (s->restart[0]) PetscCall(AdhCheckpointRead_Private(s, &leg0, &step0));
+  if (s->restart[0]) {
+    PetscBool same;
+    PetscCall(AdhCheckpointRead_Private(s, &leg0, &step0));
+    PetscCall(PetscStrcmp(s->restart, s->checkpoint, &same));
+    if (same) s->checkpoint_state = s->curve.n - 1;
+  }
   if (s->checkpoint[0]) PetscCall(AdhOutputCheckWritable_Private(s, "-adh_checkpoint", s->checkpoint));
-  if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, &viewer));
-  {
-    void (*term)(int) = signal(SIGTERM, OnSignal), (*intr)(int) = signal(SIGINT, OnSignal);
-    adh_signal = 0;
-    ierr       = SolvePathInner(s, viewer, leg0, step0);
+  /* the handlers stay until the results are closed: mpirun's SIGTERM may follow a SIGINT */
+  adh_signal     = 0;
+  s->stop_signal = 0;
+  term           = signal(SIGTERM, OnSignal);
+  intr           = signal(SIGINT, OnSignal);
+  s->stoppable   = PETSC_TRUE;
+  ierr           = SolvePathOpen(s, &viewer, leg0, step0);
+  s->stoppable   = PETSC_FALSE;
+  /* What was computed before an error or a stop is still written, marked incomplete. */
+  if (viewer) {
+    cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
+    if (!cerr) cerr = AdhOutputClose_Private(s, s->output, &viewer);
+  }
+  if (ierr == PETSC_ERR_SIG && s->stop_signal) {
+    char msg[3 * PETSC_MAX_PATH_LEN];
+    if (!cerr) cerr = StopMessage(s, msg, sizeof(msg));
     signal(SIGTERM, term);
     signal(SIGINT, intr);
+    PetscCall(cerr);
+    SETERRQ(s->comm, PETSC_ERR_SIG, "%s", msg);
   }
-  /* What was computed before an error is still written, marked incomplete. */
-  if (viewer) {
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE}));
-    PetscCall(AdhOutputClose_Private(s, s->output, &viewer));
-  }
+  signal(SIGTERM, term);
+  signal(SIGINT, intr);
   PetscCall(ierr);
+  PetscCall(cerr);
   PetscCall(CheckTouched(s));
   PetscFunctionReturn(0);
 }

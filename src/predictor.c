@@ -57,6 +57,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscBool          have_u = PETSC_FALSE; /* u = K p already */
   PetscReal          Gold = 1.0, delta = 0.0, gbar = 0.0, change = PETSC_MAX_REAL, nc = 0.0, missed = 0.0, scale = 1.0;
   PetscInt           it, n, k, updates = 0;
+  PetscBool          stop = PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_Predict, 0, 0, 0, 0));
@@ -106,6 +107,9 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   if (!have_u) PetscCall(MatMult(s->K, p, u));
   for (it = 0; it < s->predictor_max_it; it++) {
     PetscReal loc[4], glob[4], G, beta, tau;
+
+    PetscCall(AdhSolverStopRequested_Private(s, &stop));
+    if (stop) break;
 
     if (missed > 1e-7 || (change <= s->predictor_rtol && missed > 0)) {
       PetscCall(VecScale(p, scale));
@@ -239,6 +243,15 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
     delta  = glob[2] > 0 ? 0.0 : 1.0;
     change = glob[0] / glob[3];
     missed = missed + glob[1] / glob[3];
+  }
+  if (stop) { /* a signal stops the path: the step is abandoned */
+    PetscCall(VecDestroy(&u));
+    PetscCall(VecDestroy(&g));
+    PetscCall(VecDestroy(&t));
+    PetscCall(VecDestroy(&r));
+    PetscCall(VecDestroy(&z));
+    PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_ERR_SIG);
   }
   PetscCall(VecScale(p, scale));
   PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));

@@ -118,7 +118,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");
-  PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, NULL));
+  PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, &set));
+  if (set) s->boundary_set = PETSC_TRUE;
   PetscCall(AdhControlGetList_Private(&controls));
   PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", controls, s->control_type, control, sizeof(control), &set));
   if (set) PetscCall(AdhSolverSetControlType(s, control));
@@ -281,6 +282,19 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* A topography (a rough surface, a file) on the free boundary by default: legal (an isolated body
+   of the grid's size), but usually meant as a periodic cell. */
+static PetscErrorCode WarnFreeTopography(AdhSolver s)
+{
+  PetscFunctionBegin;
+  if (s->boundary != ADH_BOUNDARY_FREE || s->boundary_set) PetscFunctionReturn(0);
+  if (s->indenter.type == ADH_INDENTER_ROUGH)
+    PetscCall(PetscPrintf(s->comm, "adhbem: warning: -adh_indenter rough on the default free boundary: the periodic surface is cut to an isolated body of the grid's size, and its edges touch first; a rough surface is usually a periodic cell: add -adh_boundary periodic (-adh_boundary free keeps this and silences the warning)\n"));
+  else if (s->indenter.type == ADH_INDENTER_FILE)
+    PetscCall(PetscPrintf(s->comm, "adhbem: warning: -adh_topography %s on the default free boundary: it is taken as an isolated body of the grid's size; a measured or generated surface is usually a periodic cell: add -adh_boundary periodic (-adh_boundary free keeps this and silences the warning)\n", s->indenter.topography));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverSetUp(AdhSolver s)
 {
   PC       pc;
@@ -337,6 +351,8 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: periodic stiffness E*|q|/2 restricted to the contact set"));
     PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
     PetscCall(KSPSetFromOptions(s->ksp));
+    PetscCall(AdhSolverCheckKSPOptions_Private(s));
+    PetscCall(WarnFreeTopography(s));
     if (s->cops.setup) PetscCall(s->cops.setup(s));
     if (s->crops.setup) PetscCall(s->crops.setup(s));
     s->setup = PETSC_TRUE;
@@ -430,6 +446,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(PetscFree(s->field_states));
+  if (s->journal) fclose(s->journal);
   PetscCall(VecDestroy(&s->attach_limit));
   PetscCall(AdhSolverMonitorCancel(s));
   PetscCall(KSPDestroy(&s->ksp));

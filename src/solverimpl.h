@@ -51,6 +51,7 @@ struct _n_AdhSolver {
   /* problem */
   AdhGrid     grid;
   AdhBoundary boundary;
+  PetscBool   boundary_set;   /* -adh_boundary was given (not the default) */
   AdhIndenter indenter;
   PetscReal   Estar, gamma;
   PetscReal   sigma_fixed;    /* > 0: a mesh-independent critical stress replaces Pohrt-Popov's */
@@ -157,7 +158,19 @@ struct _n_AdhSolver {
   char       checkpoint[PETSC_MAX_PATH_LEN]; /* -adh_checkpoint: where the state goes (checkpoint.c) */
   PetscInt   checkpoint_every;              /* -adh_checkpoint_every: after every K-th state */
   char       restart[PETSC_MAX_PATH_LEN];    /* -adh_restart: the checkpoint to go on from */
+  char       restart_output[PETSC_MAX_PATH_LEN]; /* the results file of the run that wrote it */
+  PetscInt   checkpoint_state;              /* the curve row the checkpoint file holds (-1: none) */
   AdhCurve   curve;
+
+  /* the results file as it is written: rows of the curve already in it (and in the journal,
+     FILE.csv.part, appended by rank 0), and the pull-off state its attributes describe */
+  PetscInt   rows_written, pull_off_written;
+  FILE      *journal;
+
+  /* stopping a path on a signal (path.c): the checks are on while the path runs with its
+     handlers installed; stop_signal is the signal every rank agreed on */
+  PetscBool  stoppable;
+  int        stop_signal;
 };
 
 PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
@@ -183,6 +196,16 @@ PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
+/* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;
+   the step in progress is abandoned and AdhSolverSolvePath closes the results. */
+#define AdhSolverCheckStop_Private(s) \
+  do { \
+    PetscBool stop_; \
+    PetscCall(AdhSolverStopRequested_Private((s), &stop_)); \
+    if (stop_) PetscFunctionReturn(PETSC_ERR_SIG); \
+  } while (0)
 PETSC_INTERN PetscErrorCode AdhCheckpointWrite_Private(AdhSolver, PetscInt leg, PetscInt step);
 PETSC_INTERN PetscErrorCode AdhCheckpointRead_Private(AdhSolver, PetscInt *leg, PetscInt *step);
 PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
@@ -216,6 +239,8 @@ PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
+PETSC_INTERN PetscErrorCode AdhOutputResume_Private(AdhSolver, const char file[], PetscViewer *);
+PETSC_INTERN PetscErrorCode AdhOutputAppend_Private(AdhSolver, PetscViewer);
 PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);
 PETSC_INTERN PetscErrorCode AdhOutputClose_Private(AdhSolver, const char file[], PetscViewer *);
 PETSC_INTERN PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver, PetscViewer);

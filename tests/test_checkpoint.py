@@ -1,5 +1,6 @@
-"""Checkpoint and restart (-adh_checkpoint, -adh_restart): a run stopped by SIGTERM (which ends
-the step, writes the checkpoint and the results so far) or killed by SIGKILL goes on from its
+"""Checkpoint and restart (-adh_checkpoint, -adh_restart): a run stopped by SIGTERM (which abandons
+the step in progress and closes the results so far; tests/test_stop.py stops jobs through mpirun)
+or killed by SIGKILL goes on from its
 checkpoint to the curve of the uninterrupted run: bit for bit on the same number of ranks
 (deterministic FFT plans: -adh_fftw_planner estimate), to 1e-10 on another; checkpoints that do
 not fit the run, or are damaged, are refused naming the option."""
@@ -74,7 +75,7 @@ def test_sigterm_then_restart(tmp_path, reference):
     serial_only()
     ck, part = tmp_path / "ck.h5", tmp_path / "part.h5"
     rc, err = stop_after(2, 5, signal.SIGTERM, "-adh_checkpoint", str(ck), "-adh_output", str(part))
-    assert rc != 0 and "Stopped by signal 15" in err and f"-adh_restart {ck}" in err
+    assert rc != 0 and "adhbem: stopped by signal 15 after state" in err and f"-adh_restart {ck}" in err
     done, complete = curve(part)
     assert complete == 0 and 5 <= len(done["d"]) < 17
     assert not (tmp_path / "ck.h5.part").exists()

@@ -9,9 +9,13 @@ import os
 
 from .results import Results, load  # noqa: F401
 
-# Open MPI's "sm" shared-file-pointer component locks every file HDF5 opens with a semaphore named
-# after the file's base name; one left locked by a killed job hangs every later run writing a file
-# of that name. adhbem never uses shared file pointers (this only helps if MPI is not started yet).
+# Open MPI's own MPI-IO (ompio), which HDF5 writes through, opens a shared-file-pointer component
+# with every file: "sm" locks it with a semaphore named after the file's base name (one left locked
+# by a killed job hangs every later run writing a file of that name), the others leave lock and
+# data files beside it when the job is killed. adhbem never uses shared file pointers: ROMIO, which
+# creates nothing beside the file, is asked for, as the executable does (this only helps if MPI is
+# not started yet; a choice of the user's stays).
+os.environ.setdefault("OMPI_MCA_io", "^ompio")
 os.environ.setdefault("OMPI_MCA_sharedfp", "^sm")
 
 # The names of solver.py, given on first use.

@@ -3,7 +3,14 @@ parameters as a dict, the fields by state, read from the file only when asked fo
 
     r = adhbem.load("results/rough.h5")
     r.curve["force"], r.params["gamma"], r.field("contact", r.states[-1])
+
+A run that was killed (SIGKILL, a node lost) leaves FILE.h5.part and FILE.csv.part, both holding
+every state recorded before: load("FILE.h5") reads the .part then (with a warning), and the curve
+comes from the CSV journal when the HDF5 file cannot be read or holds fewer states.
 """
+import os
+import warnings
+
 import numpy as np
 
 
@@ -24,20 +31,43 @@ class Results:
     critical_stress: the (Ny, Nx) arrays written once."""
 
     FIELDS = ("pressure", "displacement", "gap", "contact")
+    COUNTS = ("contact_points", "outer_iterations", "ksp_iterations", "compliance_applications", "fft_pairs",
+              "patches", "pulled_off")
 
     def __init__(self, path):
         import h5py
         self.path = str(path)
-        self._file = h5py.File(self.path, "r")
-        self.params = {k: _plain(v) for k, v in self._file.attrs.items()}
-        self.curve = {k: self._file["curve"][k][()] for k in self._file["curve"]}
-        for k in ("contact_points", "outer_iterations", "ksp_iterations", "compliance_applications",
-                  "fft_pairs", "patches", "pulled_off"):
+        if not os.path.exists(self.path) and os.path.exists(self.path + ".part"):
+            warnings.warn(f"{self.path} is not there but {self.path}.part is: the run was killed before it ended; "
+                          "reading its states so far (complete = 0)", stacklevel=3)
+            self.path += ".part"
+        journal = _journal_name(self.path)
+        self._file = None
+        try:
+            self._file = h5py.File(self.path, "r")
+            self.params = {k: _plain(v) for k, v in self._file.attrs.items()}
+            self.curve = {k: self._file["curve"][k][()] for k in self._file["curve"]}
+        except (OSError, KeyError) as e:
+            if not os.path.exists(journal):
+                raise
+            warnings.warn(f"{self.path} cannot be read ({e}): the curve comes from {journal}, "
+                          "without fields or parameters", stacklevel=3)
+            if self._file is not None:
+                self._file.close()
+            self._file, self.params, self.curve = None, {"complete": 0}, {}
+        if not self.params.get("complete", 0) and os.path.exists(journal):
+            # a results file cut short by a kill may hold fewer states than its journal
+            rows = _read_journal(journal)
+            if len(rows.get("d", ())) > len(self.curve.get("d", ())):
+                self.curve = rows
+        for k in self.COUNTS:
             if k in self.curve:
                 self.curve[k] = self.curve[k].astype(np.int64)
-        group = self._file.get("fields")
+        group = self._file.get("fields") if self._file is not None else None
         self.field_names = [k for k in self.FIELDS if group is not None and k in group]
         self.states = group["state"][()].astype(np.int64) if group is not None and "state" in group else np.zeros(0, np.int64)
+        # frames written after the last state the file knows of (a kill between the two) are not its
+        self.states = self.states[self.states < len(self.curve.get("d", ()))]
 
     def field(self, name, state):
         """The field `name` of curve row `state` (negative: from the end), read from the file."""
@@ -64,13 +94,39 @@ class Results:
         return self._file["fields"]["critical_stress"][()]
 
     def close(self):
-        self._file.close()
+        if self._file is not None:
+            self._file.close()
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc):
         self.close()
+
+
+def _journal_name(path):
+    """FILE.csv beside FILE.h5 (FILE.csv.part beside FILE.h5.part): the curve as CSV."""
+    part = path.endswith(".part")
+    base = path[:-len(".part")] if part else path
+    csv = (base[:-3] if base.endswith(".h5") else base) + ".csv"
+    return csv + ".part" if part else csv
+
+
+def _read_journal(name):
+    """The curve of a CSV journal, without the step column; a last line cut short is left out."""
+    with open(name) as f:
+        header = f.readline().rstrip("\n").split(",")
+        rows = []
+        for line in f:
+            fields = line.rstrip("\n").split(",")
+            if not line.endswith("\n") or len(fields) != len(header):
+                break
+            try:
+                rows.append([float(x) for x in fields])
+            except ValueError:
+                break
+    data = np.array(rows, dtype=float).reshape(-1, len(header))
+    return {k: data[:, j] for j, k in enumerate(header) if k != "step"}
 
 
 def load(path):

@@ -291,14 +291,15 @@ def draw_resolution(a, runs, labels, colors):
             continue
         rows = np.arange(len(curve["d"]))
         tension = curve["force"] < 0
+        if not tension.any():
+            continue  # a run without tension (no adhesion) has nothing to resolve
         a.plot(rows[tension], curve["small_patch_tension"][tension], ".-", ms=4, color=colors[i % len(colors)],
                label=label.split(":")[0] if len(runs) > 1 else "states carrying tension")
-        if tension.any():
-            k = int(np.argmin(curve["force"]))
-            ac = prm.get("asperity_contact_radius")
-            verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
-            a.plot(k, curve["small_patch_tension"][k], "*", ms=13, color="red" if i == 0 else colors[i % len(colors)],
-                   mec="red", label=f"pull-off force: {verdict}" + (f" (asperity a_c/h {ac:.3g})" if ac else ""))
+        k = int(np.argmin(curve["force"]))
+        ac = prm.get("asperity_contact_radius")
+        verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
+        a.plot(k, curve["small_patch_tension"][k], "*", ms=13, color="red" if i == 0 else colors[i % len(colors)],
+               mec="red", label=f"pull-off force: {verdict}" + (f" (asperity a_c/h {ac:.3g})" if ac else ""))
     a.axhline(0.1, color="0.5", ls="--", lw=0.8, label="resolved at most")
     a.set_ylim(-0.03, 1.03)
     a.set_xlabel("state (curve row)")

@@ -107,29 +107,40 @@ const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contac
     PetscCheck((call) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5: %s failed", #call); \
   } while (0)
 
+/* Dataset `name` of group, extendible along its first dimension: created with dims (and chunk) when
+   missing, else opened and given the extent dims (which may also shorten it). */
+static PetscErrorCode OpenExtendible(hid_t group, const char name[], hid_t type, int rank, const hsize_t dims[], const hsize_t chunk[], hid_t *dset)
+{
+  PetscFunctionBegin;
+  if (H5Lexists(group, name, H5P_DEFAULT) <= 0) {
+    hsize_t maxdims[3];
+    hid_t   filespace, plist;
+    for (int k = 0; k < rank; k++) maxdims[k] = k ? dims[k] : H5S_UNLIMITED;
+    ADH_H5(filespace = H5Screate_simple(rank, dims, maxdims));
+    ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
+    ADH_H5(H5Pset_chunk(plist, rank, chunk));
+    ADH_H5(*dset = H5Dcreate2(group, name, type, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
+    ADH_H5(H5Pclose(plist));
+    ADH_H5(H5Sclose(filespace));
+  } else {
+    ADH_H5(*dset = H5Dopen2(group, name, H5P_DEFAULT));
+    ADH_H5(H5Dset_extent(*dset, dims));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Rows [from, from + count) of the 1-D float64 dataset `name` of group (created extendible when
    missing; its extent becomes from + count, which may also shorten it), written by rank 0 from
    values. Collective. */
 static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], PetscInt from, PetscInt count, const PetscReal *values)
 {
   hid_t       dset, filespace, memspace;
-  hsize_t     dims[1] = {(hsize_t)(from + count)}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
+  hsize_t     dims[1] = {(hsize_t)(from + count)}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
   PetscMPIInt rank;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  if (H5Lexists(group, name, H5P_DEFAULT) <= 0) {
-    hid_t plist;
-    ADH_H5(filespace = H5Screate_simple(1, dims, maxdims));
-    ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
-    ADH_H5(H5Pset_chunk(plist, 1, chunk));
-    ADH_H5(dset = H5Dcreate2(group, name, H5T_NATIVE_DOUBLE, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
-    ADH_H5(H5Pclose(plist));
-    ADH_H5(H5Sclose(filespace));
-  } else {
-    ADH_H5(dset = H5Dopen2(group, name, H5P_DEFAULT));
-    ADH_H5(H5Dset_extent(dset, dims));
-  }
+  PetscCall(OpenExtendible(group, name, H5T_NATIVE_DOUBLE, 1, dims, chunk, &dset));
   if (!rank && count > 0) {
     double *buf;
     PetscCall(PetscMalloc1(count, &buf));
@@ -153,33 +164,21 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
 {
   const AdhGrid  g = s->grid;
   hid_t          file_id, group, dset, filespace, memspace;
-  hsize_t        dims[3], maxdims[3], chunk[3], offset[3], count[3];
+  hsize_t        dims[3], chunk[3], offset[3], count[3];
   PetscInt       ys, ym;
   unsigned char *mask;
 
   PetscFunctionBegin;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   dims[0] = (hsize_t)frame + 1;
-  dims[1] = maxdims[1] = (hsize_t)g->Ny;
-  dims[2] = maxdims[2] = (hsize_t)g->Nx;
-  maxdims[0] = H5S_UNLIMITED;
+  dims[1] = (hsize_t)g->Ny;
+  dims[2] = (hsize_t)g->Nx;
   /* one frame per chunk, at most 1 GB (HDF5 chunks must stay below 4 GB) */
   chunk[0] = 1;
   chunk[1] = (hsize_t)PetscMax(1, PetscMin(g->Ny, (PetscInt)(1073741824 / g->Nx)));
   chunk[2] = (hsize_t)g->Nx;
   PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file_id, &group));
-  if (!H5Lexists(group, AdhFieldNames[3], H5P_DEFAULT)) {
-    hid_t plist;
-    ADH_H5(filespace = H5Screate_simple(3, dims, maxdims));
-    ADH_H5(plist = H5Pcreate(H5P_DATASET_CREATE));
-    ADH_H5(H5Pset_chunk(plist, 3, chunk));
-    ADH_H5(dset = H5Dcreate2(group, AdhFieldNames[3], H5T_NATIVE_UCHAR, filespace, H5P_DEFAULT, plist, H5P_DEFAULT));
-    ADH_H5(H5Pclose(plist));
-    ADH_H5(H5Sclose(filespace));
-  } else {
-    ADH_H5(dset = H5Dopen2(group, AdhFieldNames[3], H5P_DEFAULT));
-    ADH_H5(H5Dset_extent(dset, dims));
-  }
+  PetscCall(OpenExtendible(group, AdhFieldNames[3], H5T_NATIVE_UCHAR, 3, dims, chunk, &dset));
   offset[0] = (hsize_t)frame;
   offset[1] = (hsize_t)ys;
   offset[2] = 0;

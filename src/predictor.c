@@ -47,6 +47,18 @@ static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
    pressure's 1-norm, and always before the iteration may stop. The loops over the grid are
    fused, and the force constraint's rescaling of p and u is applied in the next pass over them:
    at 1024^2 the passes over memory cost as much as the transforms. */
+/* The predictor's work vectors, at every way out of it. */
+static PetscErrorCode DestroyWork(Vec *u, Vec *g, Vec *t, Vec *r, Vec *z)
+{
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(u));
+  PetscCall(VecDestroy(g));
+  PetscCall(VecDestroy(t));
+  PetscCall(VecDestroy(r));
+  PetscCall(VecDestroy(z));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal target)
 {
   const PetscReal    F = force ? target : 0.0, d = force ? 0.0 : target;
@@ -94,11 +106,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
       have_u = PETSC_TRUE;
     }
     if (!(PetscRealPart(sum) > 0)) { /* nothing touches at d */
-      PetscCall(VecDestroy(&u));
-      PetscCall(VecDestroy(&g));
-      PetscCall(VecDestroy(&t));
-      PetscCall(VecDestroy(&r));
-      PetscCall(VecDestroy(&z));
+      PetscCall(DestroyWork(&u, &g, &t, &r, &z));
       PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
       PetscFunctionReturn(0);
     }
@@ -245,11 +253,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
     missed = missed + glob[1] / glob[3];
   }
   if (stop) { /* a signal stops the path: the step is abandoned */
-    PetscCall(VecDestroy(&u));
-    PetscCall(VecDestroy(&g));
-    PetscCall(VecDestroy(&t));
-    PetscCall(VecDestroy(&r));
-    PetscCall(VecDestroy(&z));
+    PetscCall(DestroyWork(&u, &g, &t, &r, &z));
     PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_ERR_SIG);
   }
@@ -270,11 +274,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
     if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
   }
   PetscCall(AdhSolverRebuildSet_Private(s));
-  PetscCall(VecDestroy(&u));
-  PetscCall(VecDestroy(&g));
-  PetscCall(VecDestroy(&t));
-  PetscCall(VecDestroy(&r));
-  PetscCall(VecDestroy(&z));
+  PetscCall(DestroyWork(&u, &g, &t, &r, &z));
   PetscCall(PetscLogEventEnd(ADH_Predict, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

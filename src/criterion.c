@@ -108,6 +108,7 @@ typedef struct {
   PetscScalar **urow, **hrow, **Grow, **prow; /* their rows, indexed by global row from gys */
   PetscInt   *seen, *queue; /* the walk along the front within the disk: offsets (2 width + 1)^2 */
   PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
+  PetscInt    h_version;    /* the profile hl was fetched from (s->profile_version; 0: none yet) */
 } CrackClosure;
 
 /* The fetch of the rows each rank looks at, made at the solver's set-up. */
@@ -371,7 +372,10 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
     if (s->in_set[k]) ua[k] = NAN;
   PetscCall(VecRestoreArray(cc->u, &ua));
   PetscCall(FetchRows(cc, cc->u, cc->ul));
-  PetscCall(FetchRows(cc, s->h, cc->hl));
+  if (cc->h_version != s->profile_version) { /* h changes only with the profile */
+    PetscCall(FetchRows(cc, s->h, cc->hl));
+    cc->h_version = s->profile_version;
+  }
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   gys = cc->gys;
   gym = cc->gym;

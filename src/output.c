@@ -129,12 +129,27 @@ static PetscErrorCode OpenExtendible(hid_t group, const char name[], hid_t type,
   PetscFunctionReturn(0);
 }
 
+/* count (a block of rank dimensions) values of buf into dataset dset at offset. */
+static PetscErrorCode WriteBlock(hid_t dset, hid_t type, int rank, const hsize_t offset[], const hsize_t count[], const void *buf)
+{
+  hid_t filespace, memspace;
+
+  PetscFunctionBegin;
+  ADH_H5(filespace = H5Dget_space(dset));
+  ADH_H5(memspace = H5Screate_simple(rank, count, NULL));
+  ADH_H5(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, offset, NULL, count, NULL));
+  ADH_H5(H5Dwrite(dset, type, memspace, filespace, H5P_DEFAULT, buf));
+  ADH_H5(H5Sclose(memspace));
+  ADH_H5(H5Sclose(filespace));
+  PetscFunctionReturn(0);
+}
+
 /* Rows [from, from + count) of the 1-D float64 dataset `name` of group (created extendible when
    missing; its extent becomes from + count, which may also shorten it), written by rank 0 from
    values. Collective. */
 static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], PetscInt from, PetscInt count, const PetscReal *values)
 {
-  hid_t       dset, filespace, memspace;
+  hid_t       dset;
   hsize_t     dims[1] = {(hsize_t)(from + count)}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
   PetscMPIInt rank;
 
@@ -145,12 +160,7 @@ static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], Pe
     double *buf;
     PetscCall(PetscMalloc1(count, &buf));
     for (PetscInt k = 0; k < count; k++) buf[k] = (double)values[k];
-    ADH_H5(filespace = H5Dget_space(dset));
-    ADH_H5(memspace = H5Screate_simple(1, n, NULL));
-    ADH_H5(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, offset, NULL, n, NULL));
-    ADH_H5(H5Dwrite(dset, H5T_NATIVE_DOUBLE, memspace, filespace, H5P_DEFAULT, buf));
-    ADH_H5(H5Sclose(memspace));
-    ADH_H5(H5Sclose(filespace));
+    PetscCall(WriteBlock(dset, H5T_NATIVE_DOUBLE, 1, offset, n, buf));
     PetscCall(PetscFree(buf));
   }
   ADH_H5(H5Dclose(dset));
@@ -163,7 +173,7 @@ static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], Pe
 static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt frame)
 {
   const AdhGrid  g = s->grid;
-  hid_t          file_id, group, dset, filespace, memspace;
+  hid_t          file_id, group, dset;
   hsize_t        dims[3], chunk[3], offset[3], count[3];
   PetscInt       ys, ym;
   unsigned char *mask;
@@ -187,13 +197,8 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   count[2]  = (hsize_t)g->Nx;
   PetscCall(PetscMalloc1(s->nlocal + 1, &mask));
   for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : 0;
-  ADH_H5(filespace = H5Dget_space(dset));
-  ADH_H5(memspace = H5Screate_simple(3, count, NULL));
-  ADH_H5(H5Sselect_hyperslab(filespace, H5S_SELECT_SET, offset, NULL, count, NULL));
-  ADH_H5(H5Dwrite(dset, H5T_NATIVE_UCHAR, memspace, filespace, H5P_DEFAULT, mask));
+  PetscCall(WriteBlock(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask));
   PetscCall(PetscFree(mask));
-  ADH_H5(H5Sclose(memspace));
-  ADH_H5(H5Sclose(filespace));
   ADH_H5(H5Dclose(dset));
   ADH_H5(H5Gclose(group));
   PetscFunctionReturn(0);

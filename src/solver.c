@@ -275,6 +275,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(VecSum(s->h, &sum));
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
+  s->profile_version++;
   PetscCall(AdhSolverEstimateResolution_Private(s));
   PetscCall(AdhSolverClearContact_Private(s));
   PetscCall(VecCopy(s->h, s->g)); /* the undeformed gap, g = h - d */

@@ -69,6 +69,7 @@ struct _n_AdhSolver {
   Vec       Sigma_view;       /* a uniform Sigma as a grid vector, made when asked for (AdhSolverGetFields) */
   Vec       u;                /* made when asked for (AdhSolverGetDisplacement_Private) */
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
+  PetscInt  profile_version;  /* counts the profiles h has held (AdhSolverProfileChanged_Private) */
 
   /* load control */
   char          control_type[64];

@@ -5,10 +5,10 @@
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
-#include "surface.h"
+#include "geometry/surface.h"
 /* libadhbem's insides, for what its API does not give yet: the path (iterate_path) and the
    monitors (called on manually recorded states). */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 /* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \

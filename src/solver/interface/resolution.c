@@ -11,7 +11,7 @@
    exactly on mean-free h (S S h = -(E* / 2)^2 Lap h); this for rough surfaces and topographies. A
    sphere has one radius, on either boundary. With a dgamma field the weakest adhesion present
    counts (the smallest a_c). */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
 {

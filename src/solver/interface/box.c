@@ -7,7 +7,7 @@
    (2^k x {1, 5/4, 3/2, 7/4}) and their operators are cached, so FFTW plans each size once.
    The Fourier preconditioner runs on the same window. The result is the same convolution; only
    rounding differs. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 /* Smallest ladder size >= n. */
 static PetscInt LadderSize(PetscInt n)

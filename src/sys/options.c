@@ -3,7 +3,7 @@
    of running with the default. The options of the solver's KSP and PC (-adh_ksp_*, -adh_pc_*)
    are PETSc's, which reads some only during solves: they are not checked. tests/test_options.py
    keeps this list equal to what -help shows. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static const char *const AdhOptionNames[] = {
   "adh_n", "adh_size", "adh_E_star", "adh_E1", "adh_E2", "adh_nu1", "adh_nu2", "adh_gamma", "adh_gamma_field",

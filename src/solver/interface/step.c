@@ -2,7 +2,7 @@
    the solve on the contact set, detach (every point the detachment criterion lets go, at once:
    criterion.c) and attach (points off the set that penetrate, tested after a solve with no
    violators; one full multiply u = K p per attach test). */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 /* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
    set values onto it, apply A, gather them back. K_CC uses the compliance, the preconditioner

@@ -1,6 +1,6 @@
 /* Package registration: class id, log events, and FFTW-MPI initialisation, done once. */
 #include <fftw3-mpi.h>
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 PetscClassId  ADH_CLASSID;
 PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;

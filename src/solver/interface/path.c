@@ -2,7 +2,7 @@
    control), and the recorded curve. */
 #include <signal.h>
 #include <time.h>
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 #define COLUMN(name, integer) {#name, offsetof(AdhState, name), integer}
 const AdhCurveColumn AdhCurveColumns[] = {

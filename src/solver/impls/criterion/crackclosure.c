@@ -32,7 +32,7 @@
                   circle the staircase's runs grow like the square root of its radius, and the first
                   window whose mean runs high lets go; with radius 32 the sphere is within 0.6%);
                   pohrt-popov: 1.02 to 1.88 on the straight edges, 0-6% high on the curved ones. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static PetscFunctionList AdhCriterionList       = NULL;
 static PetscBool         AdhCriterionRegistered = PETSC_FALSE;

@@ -13,7 +13,7 @@
    rough surface the last asperity contacts before pull-off are such patches when their JKR
    radius is near one element), so the share of the tension carried by patches of fewer than
    ADH_RESOLVED_PATCH points says how much of the adhesive force the grid does not resolve. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static PetscInt Find(PetscInt *parent, PetscInt a)
 {

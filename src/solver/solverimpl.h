@@ -4,7 +4,7 @@
 #define ADHBEM_SOLVERIMPL_H
 #include <petscviewerhdf5.h>
 #include "adhbem.h"
-#include "indenter.h"
+#include "geometry/indenter.h"
 
 /* A window of the plane for the bounding-box convolution (box.c). */
 typedef struct {

@@ -13,7 +13,7 @@
    contact makes K_CC singular. Under force control the mean pressure is known, so the solve uses
    K + c0 (1 1^T)/N instead, positive definite on every set, and takes the mean displacement
    c0 mean(p) back out of d. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static PetscFunctionList AdhControlList       = NULL;
 static PetscBool         AdhControlRegistered = PETSC_FALSE;

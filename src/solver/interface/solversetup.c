@@ -1,6 +1,6 @@
 /* AdhSolver: lifecycle, options and set-up of the adhesive contact solver. The step algorithm
    is in contact.c, paths in path.c, output in output.c. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 const char *const AdhStarts[]   = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
 const char *const AdhAttaches[] = {"penetration", "reach", "griffith", "AdhAttach", "ADH_ATTACH_", NULL};

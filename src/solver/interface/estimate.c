@@ -12,7 +12,7 @@
    of the rows each rank looks at (40), and their rows beyond the rank's own: 2 max(3, ceil(R)) rows
    of Nx points each per rank; -adh_attach griffith a fourth such vector and its limits (16). Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static const PetscLogDouble AdhRankBaseBytes = 50e6;
 

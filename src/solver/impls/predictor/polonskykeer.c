@@ -13,7 +13,7 @@
                   It stops when an iteration changes the pressure by less than
                   -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it iterations
                   (the loop goes on from where it got). */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static PetscFunctionList AdhPredictorList       = NULL;
 static PetscBool         AdhPredictorRegistered = PETSC_FALSE;

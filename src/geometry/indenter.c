@@ -1,7 +1,7 @@
 /* Indenter profiles h(x,y): the gap between the undeformed bodies at indentation d = 0.
    Every built-in indenter has its apex on the centre of element (Nx/2, Ny/2). A topography
    (from a file through fieldfile.c, or a user's Vec) is a height map z or the gap h itself. */
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 const char *const AdhIndenterTypes[]    = {"sphere", "punch", "cone", "file", "rough", "array", "AdhIndenterType", "ADH_INDENTER_", NULL};
 const char *const AdhTopographyKinds[] = {"height", "gap", "AdhTopographyKind", "ADH_TOPOGRAPHY_", NULL};

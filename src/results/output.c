@@ -8,7 +8,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "solverimpl.h"
+#include "solver/solverimpl.h"
 
 static PetscErrorCode PartName(const char file[], char part[], size_t len)
 {

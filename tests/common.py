@@ -1,11 +1,14 @@
 """Helpers shared by the test files: printing on rank 0, MPI reductions for collective
-assertions, the environment of a child Python, and the JKR scales of a sphere (R = 1, E* = 1
+assertions, the environment of a child Python, a compliance applied and assembled densely, and the JKR scales of a sphere (R = 1, E* = 1
 unless given)."""
 import math
 import os
 
 import numpy as np
+import adhbem
 from adhbem import PETSc
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # the project
 
 R = 1.0   # sphere radius
 E = 1.0   # reduced modulus E*
@@ -34,7 +37,7 @@ def _min():
 def python_env(**extra):
     """The environment of a child Python that imports adhbem: this one's, with python/ first on
     PYTHONPATH and the rest kept (./run puts the 64-bit petsc4py there), and `extra`."""
-    python = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python")
+    python = os.path.join(ROOT, "python")
     path = os.environ.get("PYTHONPATH")
     return dict(os.environ, PYTHONPATH=python + (os.pathsep + path if path else ""), **extra)
 
@@ -80,3 +83,25 @@ def label_patches(mask, wrap):
                     todo.append((b, a))
         n += 1
     return label, n
+
+
+def apply(K, field):
+    """K applied to a full (Ny, Nx) field given on every rank; the full result on every rank."""
+    p = K.createVecRight()
+    adhbem.set_local_rows(p, K, field)
+    u = K.createVecLeft()
+    K.mult(p, u)
+    return adhbem.gather(u, K)
+
+
+def assembled(K):
+    """The dense matrix of K, column by column from unit vectors (small grids only)."""
+    Nx, Ny = adhbem.grid_shape(K)
+    n = Nx * Ny
+    M = np.empty((n, n))
+    e = np.zeros(n)
+    for k in range(n):
+        e[:] = 0.0
+        e[k] = 1.0
+        M[:, k] = apply(K, e.reshape(Ny, Nx)).ravel()
+    return M

@@ -1,4 +1,5 @@
-"""Tests run serially (`pytest tests`) and, for those marked `mpi`, under `mpirun -n 2`
+"""Tests, one folder per layer of the library (sys/, grid/, geometry/, solver/, results/) and
+scripting/ for the Python layer, run serially (`pytest tests`) and, for those marked `mpi`, under `mpirun -n 2`
 (`ranks3`: also on 3 ranks). Collective tests assert on values every rank has, so a failure
 fails on all ranks instead of leaving one waiting in a collective."""
 import os
@@ -6,6 +7,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
+# the test files sit in one folder per layer (grid/, solver/, ...) and share common.py
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import pytest  # noqa: E402
 

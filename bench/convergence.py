@@ -103,7 +103,7 @@ loop_energy = _tool("rough").loop_energy  # tools/rough.py: numpy only at import
 
 E_STAR = 1.0
 CRITERIA = ("pohrt-popov", "crack-closure")
-# a mode whose wavenumber lies on the cut-off to this relative rounding counts as inside (as src/surface.c)
+# a mode whose wavenumber lies on the cut-off to this relative rounding counts as inside (as src/geometry/surface.c)
 EDGE_RTOL = 1e-9
 
 

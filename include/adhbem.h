@@ -13,7 +13,7 @@ PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, 
 PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
 PETSC_EXTERN PetscErrorCode AdhUseOneBLASThread(void);
 
-/* ---- influence.c: closed-form element integrals (DESIGN.md sections 2 and 3) ---- */
+/* ---- grid/influence.c: closed-form element integrals (docs/physics.md) ---- */
 
 /* Displacement at (x,y), relative to the centre of an hx x hy element carrying unit uniform
    pressure, on a half-space of reduced modulus E* (Love, Johnson eq. 3.25). */
@@ -25,7 +25,7 @@ PETSC_EXTERN PetscReal AdhChiSquare(PetscReal h);
 /* Mesh-dependent critical tensile stress Sigma = sqrt(hx hy E* dgamma / chi) (eq. 13). */
 PETSC_EXTERN PetscReal AdhCriticalStress(PetscReal hx, PetscReal hy, PetscReal Estar, PetscReal dgamma);
 
-/* ---- grid.c: the Nx x Ny element grid, distributed by rows ---- */
+/* ---- grid/grid.c: the Nx x Ny element grid, distributed by rows ---- */
 
 typedef struct _n_AdhGrid *AdhGrid;
 /* A distributed FFT of a grid's size, shared by its operators (compliance.c). */
@@ -57,10 +57,10 @@ PETSC_EXTERN PetscErrorCode AdhGridGetRowsPerRank(AdhGrid, PetscInt **ly);
 /* A new Vec on the grid: the rows of this rank, block size Nx (a block per row; PETSc's HDF5
    viewer writes it as an (Ny, Nx) dataset). */
 PETSC_EXTERN PetscErrorCode AdhGridCreateVector(AdhGrid, Vec *);
-/* Centre of element (i,j): x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy (DESIGN.md section 8). */
+/* Centre of element (i,j): x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy. */
 PETSC_EXTERN PetscErrorCode AdhGridGetCoordinates(AdhGrid, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y);
 
-/* ---- fieldfile.c: fields on the grid given by the user (topographies, dgamma maps) ---- */
+/* ---- geometry/fieldfile.c: fields on the grid given by the user (topographies, dgamma maps) ---- */
 
 /* Reads a (Ny, Nx) field into v, a Vec on the grid: a C-ordered float64/float32 .npy array,
    or the 2-D float dataset `dataset` of an HDF5 file. Collective: checks that the file exists,
@@ -69,12 +69,12 @@ PETSC_EXTERN PetscErrorCode AdhFieldLoad(AdhGrid, const char option[], const cha
 /* Collective check that v has the grid's row layout and finite values; errors name `what`. */
 PETSC_EXTERN PetscErrorCode AdhFieldCheck(AdhGrid, const char what[], Vec v);
 
-/* ---- material.c: the reduced modulus ---- */
+/* ---- geometry/material.c: the reduced modulus ---- */
 
 /* E* from -adh_E_star, or from -adh_E1 -adh_nu1 -adh_E2 -adh_nu2; errors name the option. */
 PETSC_EXTERN PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm, const char prefix[], PetscReal *Estar);
 
-/* ---- compliance.c: the half-space compliance as a MatShell on distributed FFTW ---- */
+/* ---- grid/compliance.c: the half-space compliance as a MatShell on distributed FFTW ---- */
 
 typedef enum { ADH_BOUNDARY_FREE, ADH_BOUNDARY_PERIODIC } AdhBoundary;
 PETSC_EXTERN const char *const AdhBoundaries[];
@@ -105,7 +105,7 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
    precondition CG on the contact set. */
 PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Estar, Mat *);
 
-/* ---- solver.c: the adhesive contact solver ---- */
+/* ---- solver/: the adhesive contact solver ---- */
 
 typedef struct _n_AdhSolver *AdhSolver;
 typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;
@@ -198,7 +198,7 @@ PETSC_EXTERN const char *const AdhTopographyKinds[];
    state is cleared (start again with AdhSolverStart or AdhSolverSolvePath). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetTopography(AdhSolver, Vec z, AdhTopographyKind);
 /* Starting state at the path's first value (an indentation d, or a force under force control):
-   hertz or adhesive (loaded from first touch). */
+   hertz or adhesive (loaded from first touch). It begins a new curve. */
 PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);
 /* One step of the path: the equilibrium contact set at indentation d (or carrying force F under
    force control), from the current set. Under force control a set that empties means no
@@ -206,11 +206,18 @@ PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);
 PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal target);
 /* The whole -adh_path, recording every state in the curve. */
 PETSC_EXTERN PetscErrorCode AdhSolverSolvePath(AdhSolver);
+/* The -adh_path: its npath points, and the steps of each leg between them (borrowed). */
+PETSC_EXTERN PetscErrorCode AdhSolverGetPath(AdhSolver, PetscInt *npath, const PetscReal *path[], PetscInt *steps);
+/* Records the state the last AdhSolverStart or AdhSolverStep reached, as a path does: computed
+   (its seconds counted from t0, a PetscTime()), appended to the curve, and returned in *st. */
+PETSC_EXTERN PetscErrorCode AdhSolverRecordState(AdhSolver, PetscLogDouble t0, AdhState *st);
 /* Monitors: called on every rank after each recorded state of a path (step number, the state).
    -adh_monitor sets AdhSolverMonitorDefault, one line per state. */
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorSet(AdhSolver, PetscErrorCode (*)(AdhSolver, PetscInt, const AdhState *, void *), void *, PetscErrorCode (*)(void **));
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorCancel(AdhSolver);
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorDefault(AdhSolver, PetscInt, const AdhState *, void *);
+/* Calls the monitors with a recorded state; one that fails on any rank fails on every rank. */
+PETSC_EXTERN PetscErrorCode AdhSolverMonitor(AdhSolver, PetscInt step, const AdhState *);
 /* Whether the last step ended in pull-off (the next step starts with the bodies apart). */
 PETSC_EXTERN PetscErrorCode AdhSolverIsPulledOff(AdhSolver, PetscBool *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);

@@ -6,9 +6,6 @@
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
 #include "geometry/surface.h"
-/* libadhbem's insides, for what its API does not give yet: the path (iterate_path) and the
-   monitors (called on manually recorded states). */
-#include "solver/solverimpl.h"
 
 /* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \
@@ -185,30 +182,15 @@ static PyObject *state_dict(AdhSolver s)
 
 /* Records the state a step just reached, as a path records its states: appended to the curve
    (so curve() and write() have the states of manual start() and step()) with the time since t0,
-   and the monitors called. libadhbem's own append is internal; the curve is its public struct. */
+   and the monitors called. */
 static PetscErrorCode RecordState(AdhSolver s, PetscLogDouble t0, AdhState *st)
 {
-  const AdhCurve *cc;
-  AdhCurve       *c;
-  PetscLogDouble  t1;
+  const AdhCurve *c;
 
   PetscFunctionBegin;
-  PetscCall(AdhSolverComputeState(s, st));
-  PetscCall(PetscTime(&t1));
-  st->seconds = (PetscReal)(t1 - t0);
-  PetscCall(AdhSolverGetCurve(s, &cc));
-  c = (AdhCurve *)cc;
-  if (c->n == c->cap) {
-    c->cap = PetscMax(64, 2 * c->cap);
-    PetscCall(PetscRealloc(c->cap * sizeof(AdhState), &c->state));
-  }
-  c->state[c->n++] = *st;
-  for (PetscInt k = 0; k < s->nmonitors; k++) {
-    /* a monitor that fails on one rank stops every rank, as in a path */
-    int err = (int)s->monitors[k](s, c->n - 1, st, s->monitor_ctx[k]);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, s->comm));
-    PetscCheck(!err, s->comm, PETSC_ERR_USER, "Monitor %" PetscInt_FMT " failed at state %" PetscInt_FMT " (error %d)", k, c->n - 1, err);
-  }
+  PetscCall(AdhSolverRecordState(s, t0, st));
+  PetscCall(AdhSolverGetCurve(s, &c));
+  PetscCall(AdhSolverMonitor(s, c->n - 1, st));
   PetscFunctionReturn(0);
 }
 
@@ -223,12 +205,8 @@ static PyObject *start_or_step(PyObject *args, PetscBool start)
   if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
   s = solver_get(cap);
   PyPetscCall(PetscTime(&t0));
-  if (start) {
-    const AdhCurve *c;
-    PyPetscCall(AdhSolverStart(s, d));
-    PyPetscCall(AdhSolverGetCurve(s, &c));
-    ((AdhCurve *)c)->n = 0;
-  } else PyPetscCall(AdhSolverStep(s, d));
+  if (start) PyPetscCall(AdhSolverStart(s, d));
+  else PyPetscCall(AdhSolverStep(s, d));
   PyPetscCall(RecordState(s, t0, &st));
   return state_columns(&st);
 }
@@ -246,13 +224,14 @@ static PyObject *py_solver_step(PyObject *self, PyObject *args)
 /* The option path: its points and the steps per leg. */
 static PyObject *py_solver_path(PyObject *self, PyObject *args)
 {
-  PyObject *cap, *path;
-  AdhSolver s;
+  PyObject        *cap, *list;
+  PetscInt         n, steps;
+  const PetscReal *path;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  s    = solver_get(cap);
-  path = PyList_New(s->npath);
-  for (PetscInt k = 0; k < s->npath; k++) PyList_SET_ITEM(path, k, PyFloat_FromDouble((double)s->path[k]));
-  return Py_BuildValue("Nn", path, (Py_ssize_t)s->steps);
+  PyPetscCall(AdhSolverGetPath(solver_get(cap), &n, &path, &steps));
+  list = PyList_New(n);
+  for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(list, k, PyFloat_FromDouble((double)path[k]));
+  return Py_BuildValue("Nn", list, (Py_ssize_t)steps);
 }
 
 static PyObject *py_solver_state(PyObject *self, PyObject *args)

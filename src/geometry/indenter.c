@@ -1,7 +1,7 @@
 /* Indenter profiles h(x,y): the gap between the undeformed bodies at indentation d = 0.
    Every built-in indenter has its apex on the centre of element (Nx/2, Ny/2). A topography
    (from a file through fieldfile.c, or a user's Vec) is a height map z or the gap h itself. */
-#include "solver/solverimpl.h"
+#include "geometry/indenter.h"
 
 const char *const AdhIndenterTypes[]    = {"sphere", "punch", "cone", "file", "rough", "array", "AdhIndenterType", "ADH_INDENTER_", NULL};
 const char *const AdhTopographyKinds[] = {"height", "gap", "AdhTopographyKind", "ADH_TOPOGRAPHY_", NULL};
@@ -81,35 +81,5 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive, got %g", (double)ind->radius);
   PetscCheck(ind->type != ADH_INDENTER_PUNCH || ind->punch_radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive, got %g", (double)ind->punch_radius);
   PetscCheck(ind->type != ADH_INDENTER_CONE || ind->cone_slope > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive, got %g", (double)ind->cone_slope);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind)
-{
-  AdhIndenter ind = s->indenter;
-  Vec         h;
-
-  PetscFunctionBegin;
-  PetscCheck(z, s->comm, PETSC_ERR_ARG_NULL, "AdhSolverSetTopography: no topography Vec given");
-  PetscCheck(kind == ADH_TOPOGRAPHY_HEIGHT || kind == ADH_TOPOGRAPHY_GAP, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "topography kind: height or gap, got %d", (int)kind);
-  ind.type = ADH_INDENTER_ARRAY;
-  ind.kind = kind;
-  ind.z    = z;
-  if (s->setup) {
-    /* Build the new profile aside: a bad topography leaves the solver as it was. */
-    PetscCall(VecDuplicate(s->h, &h));
-    {
-      PetscErrorCode ierr = AdhIndenterFill(s->grid, &ind, h);
-      if (ierr) PetscCall(VecDestroy(&h));
-      PetscCall(ierr);
-    }
-    PetscCall(VecCopy(h, s->h));
-    PetscCall(VecDestroy(&h));
-    PetscCall(AdhSolverProfileChanged_Private(s));
-  }
-  PetscCall(PetscObjectReference((PetscObject)z));
-  PetscCall(VecDestroy(&s->indenter.z));
-  s->indenter      = ind;
-  s->indenter.topography[0] = 0;
   PetscFunctionReturn(0);
 }

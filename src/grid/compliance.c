@@ -497,7 +497,7 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
     PetscCheck(t, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
     /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
        which plans many windows and uses the whole-grid operator rarely, asks for a short limit
-       through the grid (solver.c, box.c). An explicit -adh_fftw_timelimit wins. Only on one rank:
+       through the grid (the solver and its bounding boxes). An explicit -adh_fftw_timelimit wins. Only on one rank:
        each rank times its own trials, and a limit would let ranks take different planning paths
        into different collectives (a deadlock). */
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);

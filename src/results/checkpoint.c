@@ -8,7 +8,7 @@
    writing leaves the previous checkpoint whole. A restart continues the path after the recorded
    state; with deterministic FFT plans (-adh_fftw_planner estimate) on the same number of ranks
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
-#include "solver/solverimpl.h"
+#include "results/resultsimpl.h"
 
 #define ADH_CHECKPOINT_VERSION 6 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file (read from 5 on) */
 

@@ -8,7 +8,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "solver/solverimpl.h"
+#include "results/resultsimpl.h"
 
 static PetscErrorCode PartName(const char file[], char part[], size_t len)
 {
@@ -99,7 +99,6 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscFunctionReturn(0);
 }
 
-const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contact"};
 
 /* An HDF5 call that fails (a negative return) becomes a PETSc error naming it. */
 #define ADH_H5(call) \

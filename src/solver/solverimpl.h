@@ -1,19 +1,21 @@
-/* The AdhSolver's insides, shared by solver.c (lifecycle), contact.c (one step), path.c
-   (indentation paths) and output.c (HDF5/CSV). */
+/* The AdhSolver's insides: the private header of the solver layer. Its interface (interface/: life
+   cycle, one step, the path) and its registered types (impls/<kind>/) include it, and so does the
+   results layer above it (src/results/). */
 #ifndef ADHBEM_SOLVERIMPL_H
 #define ADHBEM_SOLVERIMPL_H
 #include <petscviewerhdf5.h>
 #include "adhbem.h"
 #include "geometry/indenter.h"
+#include "sys/sysimpl.h"
 
-/* A window of the plane for the bounding-box convolution (box.c). */
+/* A window of the plane for the bounding-box convolution (interface/box.c). */
 typedef struct {
   PetscInt bx, by;
   AdhGrid  grid;
   Mat      K, S;   /* free compliance and periodic stiffness on the window */
 } AdhBox;
 
-/* What a load control does (control.c): set-up of its own objects, one step to a target (an
+/* What a load control does (impls/control/): set-up of its own objects, one step to a target (an
    indentation or a force), and clean-up. */
 typedef struct {
   PetscErrorCode (*setup)(AdhSolver);
@@ -21,7 +23,7 @@ typedef struct {
   PetscErrorCode (*destroy)(AdhSolver);
 } AdhControlOps;
 
-/* What a detachment criterion does (criterion.c): evaluate the current state, removing the points
+/* What a detachment criterion does (impls/criterion/): evaluate the current state, removing the points
    that let go (detach) or giving the largest load over its limit on the set (ratio). */
 typedef struct {
   PetscErrorCode (*setup)(AdhSolver); /* at the solver's set-up: what the criterion needs on the grid */
@@ -37,11 +39,26 @@ typedef struct {
   PetscReal d;
 } AdhSavedState;
 
+/* What a path does with its results: the results file (the curve, the fields) and the checkpoint.
+   Written by the results layer (src/results/), bound in solverregis.c, so that the solver calls it
+   without depending on it. */
+typedef struct {
+  PetscErrorCode (*check_writable)(AdhSolver, const char option[], const char file[]);
+  PetscErrorCode (*open)(AdhSolver, const char file[], PetscViewer *);   /* a new results file */
+  PetscErrorCode (*resume)(AdhSolver, const char file[], PetscViewer *); /* a restart's: the earlier run's file taken over */
+  PetscErrorCode (*write_fields)(AdhSolver, PetscViewer, PetscInt state);
+  PetscErrorCode (*append)(AdhSolver, PetscViewer); /* the states recorded since the last call */
+  PetscErrorCode (*close)(AdhSolver, const char file[], PetscViewer *);
+  PetscErrorCode (*checkpoint_write)(AdhSolver, PetscInt leg, PetscInt step);
+  PetscErrorCode (*checkpoint_read)(AdhSolver, PetscInt *leg, PetscInt *step);
+} AdhResultsOps;
+PETSC_INTERN AdhResultsOps AdhResults;
+
 #define ADH_MAX_MONITORS 8
 
 /* The fields a results file can hold (-adh_fields), as bits. */
 enum { ADH_FIELD_PRESSURE = 1, ADH_FIELD_DISPLACEMENT = 2, ADH_FIELD_GAP = 4, ADH_FIELD_CONTACT = 8, ADH_FIELD_ALL = 15 };
-PETSC_INTERN const char *const AdhFieldNames[4]; /* their names, bit k: AdhFieldNames[k] (output.c) */
+PETSC_INTERN const char *const AdhFieldNames[4]; /* their names, bit k: AdhFieldNames[k] (solveropts.c) */
 
 struct _n_AdhSolver {
   MPI_Comm    comm;
@@ -84,7 +101,7 @@ struct _n_AdhSolver {
   AdhSavedState previous;       /* force control: the state before the current step */
   PetscBool     pulled_off;     /* the last step ended in pull-off */
 
-  /* contact-set predictor (predictor.c) */
+  /* contact-set predictor (impls/predictor/) */
   char      predictor_type[64];
   PetscErrorCode (*predict)(AdhSolver, PetscBool force, PetscReal target); /* NULL: none */
   PetscReal predictor_rtol;
@@ -156,7 +173,7 @@ struct _n_AdhSolver {
   PetscInt   fields_stride;     /* -adh_fields_stride: fields of every K-th state */
   PetscInt  *field_states, nfield_states; /* the curve rows whose fields the file holds */
   char       output[PETSC_MAX_PATH_LEN];
-  char       checkpoint[PETSC_MAX_PATH_LEN]; /* -adh_checkpoint: where the state goes (checkpoint.c) */
+  char       checkpoint[PETSC_MAX_PATH_LEN]; /* -adh_checkpoint: where the state goes (src/results/checkpoint.c) */
   PetscInt   checkpoint_every;              /* -adh_checkpoint_every: after every K-th state */
   char       restart[PETSC_MAX_PATH_LEN];    /* -adh_restart: the checkpoint to go on from */
   char       restart_output[PETSC_MAX_PATH_LEN]; /* the results file of the run that wrote it */
@@ -168,7 +185,7 @@ struct _n_AdhSolver {
   PetscInt   rows_written, pull_off_written;
   FILE      *journal;
 
-  /* stopping a path on a signal (path.c): the checks are on while the path runs with its
+  /* stopping a path on a signal (interface/path.c): the checks are on while the path runs with its
      handlers installed; stop_signal is the signal every rank agreed on */
   PetscBool  stoppable;
   int        stop_signal;
@@ -194,10 +211,17 @@ PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec
 #define ADH_SIGMA_AT(a, uniform, k) ((a) ? PetscRealPart((a)[k]) : (uniform))
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
+/* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control
+   response xa, when given) become zero. */
+static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscScalar *pa, PetscScalar *xa)
+{
+  s->in_set[k] = 0;
+  s->left[k]   = 1;
+  pa[k]        = 0.0;
+  if (xa) xa[k] = 0.0;
+}
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
 /* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;
    the step in progress is abandoned and AdhSolverSolvePath closes the results. */
@@ -207,10 +231,9 @@ PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool 
     PetscCall(AdhSolverStopRequested_Private((s), &stop_)); \
     if (stop_) PetscFunctionReturn(PETSC_ERR_SIG); \
   } while (0)
-PETSC_INTERN PetscErrorCode AdhCheckpointWrite_Private(AdhSolver, PetscInt leg, PetscInt step);
-PETSC_INTERN PetscErrorCode AdhCheckpointRead_Private(AdhSolver, PetscInt *leg, PetscInt *step);
 PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
-PETSC_INTERN PetscErrorCode AdhCriterionRegisterAll_Private(void);
+/* the registries of the solver's types (interface/solverregis.c lists the built-in ones) */
+PETSC_INTERN PetscErrorCode AdhSolverInitializePackage(void);
 PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
 /* the rows crack-closure looks at each side of a point: its averaging radius, and at least the radius of its estimate of the
@@ -227,10 +250,7 @@ PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverClearContact_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);
 PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal d, PetscBool strict);
-PETSC_INTERN PetscErrorCode AdhSolverStep_Displacement(AdhSolver, PetscReal);
 PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
-PETSC_INTERN PetscErrorCode AdhControlRegisterAll_Private(void);
-PETSC_INTERN PetscErrorCode AdhPredictorRegisterAll_Private(void);
 PETSC_INTERN PetscErrorCode AdhPredictorDestroyList_Private(void);
 PETSC_INTERN PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
@@ -239,11 +259,4 @@ PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
-PETSC_INTERN PetscErrorCode AdhOutputOpen_Private(AdhSolver, const char file[], PetscViewer *);
-PETSC_INTERN PetscErrorCode AdhOutputResume_Private(AdhSolver, const char file[], PetscViewer *);
-PETSC_INTERN PetscErrorCode AdhOutputAppend_Private(AdhSolver, PetscViewer);
-PETSC_INTERN PetscErrorCode AdhOutputWriteFields_Private(AdhSolver, PetscViewer, PetscInt step);
-PETSC_INTERN PetscErrorCode AdhOutputClose_Private(AdhSolver, const char file[], PetscViewer *);
-PETSC_INTERN PetscErrorCode AdhOutputWriteCurve_Private(AdhSolver, PetscViewer);
-PETSC_INTERN PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver, const char option[], const char file[]);
 #endif

@@ -3,7 +3,7 @@
    of running with the default. The options of the solver's KSP and PC (-adh_ksp_*, -adh_pc_*)
    are PETSc's, which reads some only during solves: they are not checked. tests/test_options.py
    keeps this list equal to what -help shows. */
-#include "solver/solverimpl.h"
+#include "sys/sysimpl.h"
 
 static const char *const AdhOptionNames[] = {
   "adh_n", "adh_size", "adh_E_star", "adh_E1", "adh_E2", "adh_nu1", "adh_nu2", "adh_gamma", "adh_gamma_field",
@@ -44,12 +44,12 @@ static PetscInt EditDistance(const char *a, const char *b)
 
 /* Every option under this solver's prefix that starts with adh_ and that no part of adhbem reads
    is an error; the message names the nearest known option. */
-PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver s)
+PetscErrorCode AdhCheckOptions_Private(MPI_Comm comm, const char prefix_or_null[])
 {
   PetscInt    n, k, o;
   char      **names, **values;
   size_t      plen = 0;
-  const char *prefix = s->prefix ? s->prefix : "";
+  const char *prefix = prefix_or_null ? prefix_or_null : "";
 
   PetscFunctionBegin;
   PetscCall(PetscStrlen(prefix, &plen));
@@ -78,7 +78,7 @@ PetscErrorCode AdhSolverCheckOptions_Private(AdhSolver s)
       char message[512];
       PetscCall(PetscSNPrintf(message, sizeof(message), "Unknown option -%s%s (did you mean -%s%s?); build/adhbem -help lists the options", prefix, name, prefix, AdhOptionNames[nearest]));
       PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
-      SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
+      SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
     }
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
@@ -93,16 +93,16 @@ static const char *const KSPOptionNames[]    = {"ksp_rtol", "ksp_atol", "ksp_div
 /* After the KSP's set-up from the options: every -adh_ksp_ and -adh_pc_ option under this solver's
    prefix that neither it nor a solve reads (misspelled, or of another KSP type) is an error naming
    it, before any solve. */
-PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver s)
+PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
 {
   PetscInt    n;
   char      **names, **values, message[512] = "";
   size_t      plen   = 0;
-  const char *prefix = s->prefix ? s->prefix : "";
+  const char *prefix = prefix_or_null ? prefix_or_null : "";
   KSPType     type;
 
   PetscFunctionBegin;
-  PetscCall(KSPGetType(s->ksp, &type));
+  PetscCall(KSPGetType(ksp, &type));
   PetscCall(PetscStrlen(prefix, &plen));
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n && !message[0]; k++) {
@@ -129,6 +129,6 @@ PetscErrorCode AdhSolverCheckKSPOptions_Private(AdhSolver s)
     else PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner: misspelled, or an option of another KSP or PC type", prefix, name, type));
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
-  PetscCheck(!message[0], s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
+  PetscCheck(!message[0], PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
   PetscFunctionReturn(0);
 }

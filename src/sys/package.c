@@ -1,6 +1,7 @@
-/* Package registration: class id, log events, and FFTW-MPI initialisation, done once. */
+/* The package: class id, log events, and FFTW-MPI initialisation, done once. The solver's types
+   register in solver/interface/solverregis.c. */
 #include <fftw3-mpi.h>
-#include "solver/solverimpl.h"
+#include "adhbem.h"
 
 PetscClassId  ADH_CLASSID;
 PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;
@@ -11,9 +12,6 @@ static PetscErrorCode AdhFinalizePackage(void)
 {
   PetscFunctionBegin;
   fftw_mpi_cleanup();
-  PetscCall(AdhControlDestroyList_Private());
-  PetscCall(AdhCriterionDestroyList_Private());
-  PetscCall(AdhPredictorDestroyList_Private());
   AdhPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

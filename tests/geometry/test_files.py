@@ -1,6 +1,6 @@
 """Fields from files and arrays: topographies (-adh_topography, -adh_topography_kind,
 Solver(topography=...)) and the work-of-adhesion field (-adh_gamma_field,
-Solver(gamma_field=...)), read by src/fieldfile.c.
+Solver(gamma_field=...)), read by src/geometry/fieldfile.c.
 
 The reference is the built-in sphere, h = r^2/2R at the element centres ((i - Nx/2) hx,
 (j - Ny/2) hy). The height map z = -r^2/2R has its maximum 0 on the centre element, so

@@ -1,4 +1,4 @@
-"""The random rough surface (src/surface.c, adhbem.rough_surface): the realised statistics are
+"""The random rough surface (src/geometry/surface.c, adhbem.rough_surface): the realised statistics are
 the requested ones exactly, the power spectrum is the self-affine one with its roll-off and
 cut-off, the surface depends on the seed alone (bit for bit on any number of ranks), and bad
 parameters raise errors that name the option.

@@ -1,4 +1,4 @@
-"""The half-space compliance K (u = K p) as a MatShell on distributed FFTW (src/compliance.c).
+"""The half-space compliance K (u = K p) as a MatShell on distributed FFTW (src/grid/compliance.c).
 
 References are independent of the C code's FFT path: a dense direct sum of Love coefficients
 (free), a NumPy FFT with the 2/(E*|q|) multiplier (periodic), Hertz's analytic displacement.
@@ -16,34 +16,12 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
+from common import ROOT, apply, assembled
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def mpi(comm):
     return comm.tompi4py()
-
-
-def apply(K, field):
-    """K applied to a full (Ny, Nx) field given on every rank; the full result on every rank."""
-    p = K.createVecRight()
-    adhbem.set_local_rows(p, K, field)
-    u = K.createVecLeft()
-    K.mult(p, u)
-    return adhbem.gather(u, K)
-
-
-def assembled(K):
-    """The dense matrix of K, column by column from unit vectors (small grids only)."""
-    Nx, Ny = adhbem.grid_shape(K)
-    n = Nx * Ny
-    M = np.empty((n, n))
-    e = np.zeros(n)
-    for k in range(n):
-        e[:] = 0.0
-        e[k] = 1.0
-        M[:, k] = apply(K, e.reshape(Ny, Nx)).ravel()
-    return M
 
 
 def dense_free(Nx, Ny, hx, hy, E):

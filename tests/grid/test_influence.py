@@ -1,4 +1,4 @@
-"""Closed-form element integrals (src/influence.c) against independent numerical quadrature.
+"""Closed-form element integrals (src/grid/influence.c) against independent numerical quadrature.
 
 Love's coefficient is the Boussinesq integral over one uniformly loaded hx x hy element,
 

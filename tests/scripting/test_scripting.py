@@ -11,7 +11,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import ROOT  # noqa: E402
 # JKR sphere, loaded from first touch and pulled off (a_c about 7 h)
 OPTS = dict(n=32, size=1.0, E_star=1.0, gamma=1e-3, radius=1.0, steps=6)
 PATH = [0.0, 0.02, -0.03]

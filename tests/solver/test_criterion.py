@@ -21,7 +21,7 @@ from adhbem import PETSc
 from adhbem_build import EXE
 from common import say, _min, _max
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+from common import ROOT  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 import criterion as measure  # noqa: E402  (the benchmark's measurement, on small grids)
 

@@ -1,4 +1,4 @@
-"""Resources checked before anything is allocated (src/estimate.c): a grid the build's PETSc
+"""Resources checked before anything is allocated (src/solver/interface/estimate.c): a grid the build's PETSc
 indices cannot address and a grid that clearly does not fit into memory stop at once with one
 message naming -adh_n (the indices first: no option gets past them); the memory estimate
 (-adh_view) bounds the measured peak from above, within 2x."""

@@ -21,10 +21,8 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
-from common import _max, _min, gamma_for, jkr_scales, label_patches, rank0, say  # noqa: E402
+from common import _max, _min, assembled, gamma_for, jkr_scales, label_patches, rank0, say  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_compliance import assembled  # noqa: E402
 
 R = 1.0   # sphere radius
 E = 1.0   # reduced modulus E*

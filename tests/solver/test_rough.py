@@ -17,7 +17,7 @@ from adhbem import PETSc
 from adhbem_build import EXE
 from common import python_env, say  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import ROOT  # noqa: E402
 
 # a small periodic cell with adhesion that matters: grid spacing 1, E* = 1
 SURFACE = dict(hurst=0.8, rms_slope=0.1, rolloff_wavelength=16.0, seed=7)

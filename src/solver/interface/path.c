@@ -95,6 +95,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 
   PetscFunctionBegin;
   PetscCall(AdhSolverSetUp(s));
+  s->curve.n = 0;
   PetscCall(VecMin(s->h, NULL, &dtouch));
   if (s->start == ADH_START_HERTZ) {
     /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap, or under force control
@@ -186,26 +187,50 @@ PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhStat
   PetscFunctionReturn(0);
 }
 
-/* Appends the current state to the curve and to the results file (its fields too), calls the
-   monitors. */
-static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
+PetscErrorCode AdhSolverMonitor(AdhSolver s, PetscInt step, const AdhState *st)
 {
-  AdhState       st;
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < s->nmonitors; k++) {
+    /* a monitor that fails on one rank stops every rank, not just that one */
+    int err = (int)s->monitors[k](s, step, st, s->monitor_ctx[k]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, s->comm));
+    PetscCheck(!err, s->comm, PETSC_ERR_USER, "Monitor %" PetscInt_FMT " failed at state %" PetscInt_FMT " (error %d)", k, step, err);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st)
+{
   PetscLogDouble t1;
 
   PetscFunctionBegin;
-  PetscCall(AdhSolverComputeState(s, &st));
+  PetscCall(AdhSolverComputeState(s, st));
   PetscCall(PetscTime(&t1));
-  st.seconds = (PetscReal)(t1 - t0);
-  PetscCall(AdhCurveAppend_Private(&s->curve, &st));
-  if (viewer && (s->curve.n - 1) % s->fields_stride == 0) PetscCall(AdhOutputWriteFields_Private(s, viewer, s->curve.n - 1));
-  if (viewer) PetscCall(AdhOutputAppend_Private(s, viewer));
-  for (PetscInt k = 0; k < s->nmonitors; k++) {
-    /* a monitor that fails on one rank stops every rank, not just that one */
-    int err = (int)s->monitors[k](s, s->curve.n - 1, &st, s->monitor_ctx[k]);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, s->comm));
-    PetscCheck(!err, s->comm, PETSC_ERR_USER, "Monitor %" PetscInt_FMT " failed at state %" PetscInt_FMT " (error %d)", k, s->curve.n - 1, err);
-  }
+  st->seconds = (PetscReal)(t1 - t0);
+  PetscCall(AdhCurveAppend_Private(&s->curve, st));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetPath(AdhSolver s, PetscInt *npath, const PetscReal *path[], PetscInt *steps)
+{
+  PetscFunctionBegin;
+  if (npath) *npath = s->npath;
+  if (path) *path = s->path;
+  if (steps) *steps = s->steps;
+  PetscFunctionReturn(0);
+}
+
+/* Records the current state in the curve and the results file (its fields too), then calls the
+   monitors: a monitor that fails finds the state already written. */
+static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
+{
+  AdhState st;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverRecordState(s, t0, &st));
+  if (viewer && (s->curve.n - 1) % s->fields_stride == 0) PetscCall(AdhResults.write_fields(s, viewer, s->curve.n - 1));
+  if (viewer) PetscCall(AdhResults.append(s, viewer));
+  PetscCall(AdhSolverMonitor(s, s->curve.n - 1, &st));
   PetscFunctionReturn(0);
 }
 
@@ -243,7 +268,7 @@ PetscErrorCode AdhSolverStopRequested_Private(AdhSolver s, PetscBool *stop)
 static PetscErrorCode AfterRecord(AdhSolver s, PetscInt leg, PetscInt step)
 {
   PetscFunctionBegin;
-  if (s->checkpoint[0] && (s->curve.n - 1) % s->checkpoint_every == 0) PetscCall(AdhCheckpointWrite_Private(s, leg, step));
+  if (s->checkpoint[0] && (s->curve.n - 1) % s->checkpoint_every == 0) PetscCall(AdhResults.checkpoint_write(s, leg, step));
   AdhSolverCheckStop_Private(s);
   PetscFunctionReturn(0);
 }
@@ -338,8 +363,8 @@ static PetscErrorCode StopMessage(AdhSolver s, char msg[], size_t len)
 static PetscErrorCode SolvePathOpen(AdhSolver s, PetscViewer *viewer, PetscInt leg0, PetscInt step0)
 {
   PetscFunctionBegin;
-  if (s->output[0] && s->restart[0]) PetscCall(AdhOutputResume_Private(s, s->output, viewer));
-  else if (s->output[0]) PetscCall(AdhOutputOpen_Private(s, s->output, viewer));
+  if (s->output[0] && s->restart[0]) PetscCall(AdhResults.resume(s, s->output, viewer));
+  else if (s->output[0]) PetscCall(AdhResults.open(s, s->output, viewer));
   PetscCall(SolvePathInner(s, *viewer, leg0, step0));
   PetscFunctionReturn(0);
 }
@@ -359,11 +384,11 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   /* a checkpoint that does not fit is refused before a results file is opened */
   if (s->restart[0]) {
     PetscBool same;
-    PetscCall(AdhCheckpointRead_Private(s, &leg0, &step0));
+    PetscCall(AdhResults.checkpoint_read(s, &leg0, &step0));
     PetscCall(PetscStrcmp(s->restart, s->checkpoint, &same));
     if (same) s->checkpoint_state = s->curve.n - 1;
   }
-  if (s->checkpoint[0]) PetscCall(AdhOutputCheckWritable_Private(s, "-adh_checkpoint", s->checkpoint));
+  if (s->checkpoint[0]) PetscCall(AdhResults.check_writable(s, "-adh_checkpoint", s->checkpoint));
   /* the handlers stay until the results are closed: mpirun's SIGTERM may follow a SIGINT */
   adh_signal     = 0;
   s->stop_signal = 0;
@@ -375,7 +400,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   /* What was computed before an error or a stop is still written, marked incomplete. */
   if (viewer) {
     cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
-    if (!cerr) cerr = AdhOutputClose_Private(s, s->output, &viewer);
+    if (!cerr) cerr = AdhResults.close(s, s->output, &viewer);
   }
   if (ierr == PETSC_ERR_SIG && s->stop_signal) {
     char msg[3 * PETSC_MAX_PATH_LEN];

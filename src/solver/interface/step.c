@@ -1,6 +1,6 @@
-/* The pieces of one step of the Pohrt-Popov algorithm, shared by the load controls (control.c):
+/* The pieces of one step of the Pohrt-Popov algorithm, shared by the load controls (impls/control/):
    the solve on the contact set, detach (every point the detachment criterion lets go, at once:
-   criterion.c) and attach (points off the set that penetrate, tested after a solve with no
+   impls/criterion/) and attach (points off the set that penetrate, tested after a solve with no
    violators; one full multiply u = K p per attach test). */
 #include "solver/solverimpl.h"
 
@@ -463,40 +463,5 @@ PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver s, PetscReal d)
 {
   PetscFunctionBegin;
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && d >= s->mean_h), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (the gap's mean is max(0, mean(h) - d), and mean(h) = %g): under displacement control the force is undetermined there; use -adh_control force", (double)d, (double)s->mean_h);
-  PetscFunctionReturn(0);
-}
-
-/* Displacement control: the equilibrium set at indentation d, from the current set. */
-PetscErrorCode AdhSolverStep_Displacement(AdhSolver s, PetscReal d)
-{
-  PetscInt        outer, removed, added;
-  const PetscBool had_contact = s->npoints > 0;
-
-  PetscFunctionBegin;
-  PetscCall(AdhSolverCheckBelowFullContact_Private(s, d));
-  s->d           = d;
-  s->joined_step = 0;
-  /* without adhesion the state at d is unique: a predictor may guess its set */
-  if (s->predict && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->predict(s, PETSC_FALSE, d));
-  for (outer = 1;; outer++) {
-    PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
-    AdhSolverCheckStop_Private(s);
-    PetscCall(AdhSolverMonitorProgress_Private(s, outer));
-    PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
-    PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
-    PetscCall(AdhSolverDetach_Private(s, &removed));
-    PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
-    added = 0;
-    if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
-    s->joined_step += added;
-    PetscCheck(!s->certified_attach || (!removed && added), s->comm, PETSC_ERR_PLIB, "Certified early stop for an attach test that changed nothing");
-    if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
-    PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
-    PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
-    if (!removed && !added) break;
-  }
-  s->step_outer      = outer;
-  s->joined_previous = s->joined_step;
-  s->pulled_off      = (PetscBool)(had_contact && !s->npoints);
   PetscFunctionReturn(0);
 }

@@ -1,42 +1,14 @@
-/* Load control, a registered type (-adh_control): what the path's values are and how a step
-   reaches one.
-
-   displacement: the path holds indentations d; a step is the Pohrt-Popov loop at fixed d
-                 (contact.c).
-   force:        the path holds forces F (for a periodic cell, F = mean pressure x cell area); a
-                 step finds the d at which the equilibrium set carries exactly F. For a fixed set C
-                 the pressure is affine in d, p = d x - y with K_CC x = 1 and K_CC y = h_C, so one
-                 extra solve per set update gives the d of that set; then detach and attach as
-                 under displacement control, until the set is stable. When the set empties, no
-                 equilibrium carries F: the contact has come off.
+/* Load control force (-adh_control force): the path holds forces F (for a periodic cell, F = mean
+   pressure x cell area); a step finds the d at which the equilibrium set carries exactly F. For a
+   fixed set C the pressure is affine in d, p = d x - y with K_CC x = 1 and K_CC y = h_C, so one
+   extra solve per set update gives the d of that set; then detach and attach as under
+   displacement control, until the set is stable. When the set empties, no equilibrium carries F:
+   the contact has come off.
    On a periodic cell the mean displacement is free (K has no mean mode), and the whole cell in
    contact makes K_CC singular. Under force control the mean pressure is known, so the solve uses
    K + c0 (1 1^T)/N instead, positive definite on every set, and takes the mean displacement
    c0 mean(p) back out of d. */
 #include "solver/solverimpl.h"
-
-static PetscFunctionList AdhControlList       = NULL;
-static PetscBool         AdhControlRegistered = PETSC_FALSE;
-
-PetscErrorCode AdhControlRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
-{
-  PetscFunctionBegin;
-  PetscCall(AdhInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhControlList, name, create));
-  PetscFunctionReturn(0);
-}
-
-/* ---- displacement control ---- */
-
-static PetscErrorCode AdhControlCreate_Displacement(AdhSolver s)
-{
-  PetscFunctionBegin;
-  s->cops.step        = AdhSolverStep_Displacement;
-  s->force_control    = PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-/* ---- force control ---- */
 
 static PetscErrorCode SetUp_Force(AdhSolver s)
 {
@@ -214,105 +186,12 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode AdhControlCreate_Force(AdhSolver s)
+PETSC_INTERN PetscErrorCode AdhControlCreate_Force(AdhSolver s)
 {
   PetscFunctionBegin;
   s->cops.setup     = SetUp_Force;
   s->cops.step      = Step_Force;
   s->cops.destroy   = Destroy_Force;
   s->force_control  = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhControlRegisterAll_Private(void)
-{
-  PetscFunctionBegin;
-  if (AdhControlRegistered) PetscFunctionReturn(0);
-  AdhControlRegistered = PETSC_TRUE;
-  PetscCall(AdhControlRegister(ADHCONTROLDISPLACEMENT, AdhControlCreate_Displacement));
-  PetscCall(AdhControlRegister(ADHCONTROLFORCE, AdhControlCreate_Force));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhControlDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhControlList));
-  AdhControlRegistered = PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhControlGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  *list = AdhControlList;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
-{
-  PetscErrorCode (*create)(AdhSolver);
-  PetscBool same;
-
-  PetscFunctionBegin;
-  PetscCall(AdhControlRegisterAll_Private());
-  PetscCall(PetscStrcmp(s->control_type, type, &same));
-  if (same) PetscFunctionReturn(0);
-  PetscCall(PetscFunctionListFind(AdhControlList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_control: unknown load control '%s' (displacement or force)", type);
-  PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_control: the load control cannot change after set-up");
-  if (s->cops.destroy) PetscCall(s->cops.destroy(s));
-  PetscCall(PetscMemzero(&s->cops, sizeof(s->cops)));
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->control_type, type, sizeof(s->control_type)));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
-{
-  PetscFunctionBegin;
-  *type = s->control_type;
-  PetscFunctionReturn(0);
-}
-
-/* One step to the target (d, or F under force control), with its counts. */
-PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
-{
-  PetscInt       mults0, mults1, ffts0, ffts1;
-  PetscErrorCode ierr;
-
-  PetscFunctionBegin;
-  PetscCall(AdhSolverSetUp(s));
-  PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
-  PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
-  PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
-  PetscCall(PetscArrayzero(s->left, s->nlocal));
-  s->step_outer = 0;
-  s->step_ksp   = 0;
-  if (s->pulled_off) {
-    /* The last step ended in pull-off: the bodies are apart now. */
-    PetscCall(AdhSolverClearContact_Private(s));
-  }
-  ierr = s->cops.step(s, target);
-  if (ierr == PETSC_ERR_SIG && s->stoppable && s->stop_signal) { /* stopped by a signal: the step is abandoned */
-    PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
-    PetscFunctionReturn(ierr);
-  }
-  PetscCall(ierr);
-  if (s->u) { /* a displacement handed out before follows the state */
-    Vec u;
-    PetscCall(AdhSolverGetDisplacement_Private(s, &u));
-  }
-  PetscCall(AdhSolverMultCount_Private(s, &mults1, &ffts1));
-  s->step_mults = mults1 - mults0;
-  s->step_ffts  = ffts1 - ffts0;
-  PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverIsPulledOff(AdhSolver s, PetscBool *pulled_off)
-{
-  PetscFunctionBegin;
-  *pulled_off = s->pulled_off;
   PetscFunctionReturn(0);
 }

@@ -1,98 +1,28 @@
-/* Detachment criterion, a registered type (-adh_criterion): which points of the contact set let
-   go after a solve. Both reduce to non-adhesive contact (p < 0 lets go) when dgamma = 0.
-
-   pohrt-popov:   the paper's rule, p < -Sigma, Sigma = sqrt(hx hy E* dgamma / chi): the tension
-                  at which the elastic energy of one isolated element pays for its surface energy.
-                  Calibrated on one element, it lets go late on straight edges: along a grid axis
-                  as if dgamma were 1.85 times larger, at 45 degrees 1.34 times.
-   crack-closure: the energy release rate of the contact edge, estimated by virtual crack closure
-                  (Rybicki and Kanninen 1977; applied to this BEM before in Front. Mech. Eng. 7,
-                  754782 (2021), on the parabolic and sinusoidal contacts). The front is the set's
-                  points with an open 4-neighbour. When it lets go, the edge moves by one element:
-                  on a straight edge in any direction the set less its front is the set shifted by
-                  one element along the grid axis closest to the edge's normal, so a front point
-                  gets the opening its neighbour along that axis has now. A front point i under
-                  tension -p_i frees G_i = -p_i delta_i / 2 per unit area when it lets go, delta_i
-                  the opening (gap) of its open neighbour closest to the edge's normal (estimated
-                  from the open points within ADH_NORMAL_RADIUS). Single points of a staircase are
-                  not representative (along each run of the staircase G_i rises from about 0.6 to
-                  1.5 times the edge's rate; the mean over a period of the staircase is within 1%
-                  of it), so G is averaged along the front, over the front points within
-                  -adh_criterion_radius grid spacings (default 16) that can be reached along it,
-                  with a weight that fades to zero at that radius; a front point lets go when that
-                  mean exceeds its dgamma. A point lets go also under the pohrt-popov rule: the
-                  exact energy balance of a point alone, which lets a crack start inside the set.
-                  Where the indenter has no face (outside a punch, h = PETSC_INFINITY) the opening
-                  is measured from the face extended flat. Costs one compliance multiply per test
-                  (the attach test after a test that let nothing go reuses its gap); the certified
-                  early stop does not apply (the openings move with p).
-                  Measured (./run bench criterion): the work of adhesion it acts with is within
-                  1.2% of dgamma on straight edges in the six directions measured (0 to 45 degrees),
-                  and within 1.7% on the JKR sphere, the cone and the punch (a little low: on a
-                  circle the staircase's runs grow like the square root of its radius, and the first
-                  window whose mean runs high lets go; with radius 32 the sphere is within 0.6%);
-                  pohrt-popov: 1.02 to 1.88 on the straight edges, 0-6% high on the curved ones. */
+/* Detachment criterion crack-closure (-adh_criterion crack-closure, the default): the energy
+   release rate of the contact edge, estimated by virtual crack closure (Rybicki and Kanninen
+   1977; applied to this BEM before in Front. Mech. Eng. 7, 754782 (2021), on the parabolic and
+   sinusoidal contacts). The front is the set's points with an open 4-neighbour. When it lets go,
+   the edge moves by one element: on a straight edge in any direction the set less its front is
+   the set shifted by one element along the grid axis closest to the edge's normal, so a front
+   point gets the opening its neighbour along that axis has now. A front point i under tension
+   -p_i frees G_i = -p_i delta_i / 2 per unit area when it lets go, delta_i the opening (gap) of
+   its open neighbour closest to the edge's normal (estimated from the open points within
+   ADH_NORMAL_RADIUS). Single points of a staircase are not representative (along each run of the
+   staircase G_i rises from about 0.6 to 1.5 times the edge's rate; the mean over a period of the
+   staircase is within 1% of it), so G is averaged along the front, over the front points within
+   -adh_criterion_radius grid spacings (default 16) that can be reached along it, with a weight
+   that fades to zero at that radius; a front point lets go when that mean exceeds its dgamma. A
+   point lets go also under the pohrt-popov rule: the exact energy balance of a point alone,
+   which lets a crack start inside the set. Where the indenter has no face (outside a punch, h =
+   PETSC_INFINITY) the opening is measured from the face extended flat. Costs one compliance
+   multiply per test (the attach test after a test that let nothing go reuses its gap); the
+   certified early stop does not apply (the openings move with p). Measured (./run bench
+   criterion): the work of adhesion it acts with is within 1.2% of dgamma on straight edges in
+   the six directions measured (0 to 45 degrees), and within 1.7% on the JKR sphere, the cone and
+   the punch (a little low: on a circle the staircase's runs grow like the square root of its
+   radius, and the first window whose mean runs high lets go; with radius 32 the sphere is within
+   0.6%); pohrt-popov: 1.02 to 1.88 on the straight edges, 0-6% high on the curved ones. */
 #include "solver/solverimpl.h"
-
-static PetscFunctionList AdhCriterionList       = NULL;
-static PetscBool         AdhCriterionRegistered = PETSC_FALSE;
-
-PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
-{
-  PetscFunctionBegin;
-  PetscCall(AdhInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhCriterionList, name, create));
-  PetscFunctionReturn(0);
-}
-
-/* Point k leaves the set (and its pressure, and its force-control response, become zero). */
-static inline void RemovePoint(AdhSolver s, PetscInt k, PetscScalar *pa, PetscScalar *xa)
-{
-  s->in_set[k] = 0;
-  s->left[k]   = 1;
-  pa[k]        = 0.0;
-  if (xa) xa[k] = 0.0;
-}
-
-/* ---- pohrt-popov ---- */
-
-/* With detach, every point with p < -Sigma leaves; otherwise *ratio = max(-p/Sigma) on the set. */
-static PetscErrorCode Evaluate_PohrtPopov(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
-{
-  PetscScalar       *pa, *xa = NULL;
-  const PetscScalar *ta;
-  PetscReal          tu, r = 0.0;
-  PetscInt           k, count = 0;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetArray(s->p, &pa));
-  if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
-  for (k = 0; k < s->nlocal; k++) {
-    const PetscReal p = PetscRealPart(pa[k]), Sigma = ADH_SIGMA_AT(ta, tu, k);
-    if (!s->in_set[k]) continue;
-    if (detach && p < -Sigma) {
-      RemovePoint(s, k, pa, xa);
-      count++;
-    } else if (p < 0 && Sigma > 0) r = PetscMax(r, -p / Sigma);
-  }
-  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
-  PetscCall(VecRestoreArray(s->p, &pa));
-  if (removed) PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
-  if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver s)
-{
-  PetscFunctionBegin;
-  s->crops.evaluate    = Evaluate_PohrtPopov;
-  s->crops.certifiable = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-/* ---- crack-closure ---- */
 
 typedef struct {
   PetscReal radius; /* the release rate is averaged along the front within radius grid spacings */
@@ -444,7 +374,7 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
         lets_go = (PetscBool)(lets_go || sum / n > dgamma);
       }
       if (detach && lets_go) {
-        RemovePoint(s, k, pa, xa);
+        AdhSolverRemovePoint_Private(s, k, pa, xa);
         count++;
       } else r = PetscMax(r, load);
     }
@@ -479,7 +409,7 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
+PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
 {
   CrackClosure *cc;
 
@@ -491,78 +421,5 @@ static PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
   s->crops.destroy     = Destroy_CrackClosure;
   /* the early stop bounds p, not the openings, which move with p */
   s->crops.certifiable = PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-/* ---- the registry ---- */
-
-PetscErrorCode AdhCriterionRegisterAll_Private(void)
-{
-  PetscFunctionBegin;
-  if (AdhCriterionRegistered) PetscFunctionReturn(0);
-  AdhCriterionRegistered = PETSC_TRUE;
-  PetscCall(AdhCriterionRegister(ADHCRITERIONPOHRTPOPOV, AdhCriterionCreate_PohrtPopov));
-  PetscCall(AdhCriterionRegister(ADHCRITERIONCRACKCLOSURE, AdhCriterionCreate_CrackClosure));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhCriterionDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhCriterionList));
-  AdhCriterionRegistered = PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhCriterionRegisterAll_Private());
-  *list = AdhCriterionList;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
-{
-  PetscErrorCode (*create)(AdhSolver);
-  PetscBool same;
-
-  PetscFunctionBegin;
-  PetscCall(AdhCriterionRegisterAll_Private());
-  PetscCall(PetscStrcmp(s->criterion_type, type, &same));
-  if (same) PetscFunctionReturn(0);
-  PetscCall(PetscFunctionListFind(AdhCriterionList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_criterion: unknown detachment criterion '%s' (pohrt-popov or crack-closure)", type);
-  PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_criterion: the detachment criterion cannot change after set-up");
-  if (s->crops.destroy) PetscCall(s->crops.destroy(s));
-  PetscCall(PetscMemzero(&s->crops, sizeof(s->crops)));
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->criterion_type, type, sizeof(s->criterion_type)));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverGetCriterionType(AdhSolver s, AdhCriterionType *type)
-{
-  PetscFunctionBegin;
-  *type = s->criterion_type;
-  PetscFunctionReturn(0);
-}
-
-/* Remove every point of the set that the criterion lets go. */
-PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
-{
-  PetscFunctionBegin;
-  s->gap_current          = PETSC_FALSE;
-  s->attach_limit_current = PETSC_FALSE;
-  PetscCall(s->crops.evaluate(s, PETSC_TRUE, removed, NULL));
-  PetscFunctionReturn(0);
-}
-
-/* How close the current state is to letting go: the criterion's largest load over its limit on
-   the set (1: a point is about to let go). */
-PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver s, PetscReal *ratio)
-{
-  PetscFunctionBegin;
-  PetscCall(s->crops.evaluate(s, PETSC_FALSE, NULL, ratio));
   PetscFunctionReturn(0);
 }

@@ -1,41 +1,10 @@
-/* Contact-set predictor, a registered type (-adh_predictor): a fast first guess of the contact set
-   and pressure of a step without adhesion, at a force (control.c) or an indentation (contact.c),
-   handed to the set-update loop, which then certifies it as it certifies any set. The answer is
-   the loop's: without adhesion the contact problem (p >= 0 on the set, g >= 0 off it, at d or
-   carrying F) has one solution, and the loop started from a good guess only has fewer sets to
-   go through.
-
-   none:          the loop starts from the previous state's set.
-   polonsky-keer: Polonsky & Keer's conjugate gradient (Wear 1999), with the force constraint
-                  (preconditioned with the stiffness E*|q|/2, -adh_predictor_fourier) or at
-                  fixed d. Should it lose the whole set, the loop starts from nothing in contact
-                  and still ends in the same state.
-                  It stops when an iteration changes the pressure by less than
-                  -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it iterations
-                  (the loop goes on from where it got). */
+/* Contact-set predictor polonsky-keer (-adh_predictor polonsky-keer): Polonsky & Keer's
+   conjugate gradient (Wear 1999), with the force constraint (preconditioned with the stiffness
+   E*|q|/2, -adh_predictor_fourier) or at fixed d. Should it lose the whole set, the loop starts
+   from nothing in contact and still ends in the same state. It stops when an iteration changes
+   the pressure by less than -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it
+   iterations (the loop goes on from where it got). */
 #include "solver/solverimpl.h"
-
-static PetscFunctionList AdhPredictorList       = NULL;
-static PetscBool         AdhPredictorRegistered = PETSC_FALSE;
-
-PetscErrorCode AdhPredictorRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
-{
-  PetscFunctionBegin;
-  PetscCall(AdhInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhPredictorList, name, create));
-  PetscFunctionReturn(0);
-}
-
-/* ---- none ---- */
-
-static PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
-{
-  PetscFunctionBegin;
-  s->predict = NULL;
-  PetscFunctionReturn(0);
-}
-
-/* ---- polonsky-keer ---- */
 
 /* The pressure p >= 0 with the gap g = K p + h - d >= 0 closed where p > 0, on the whole grid,
    carrying F (force: d is the gap's mean on the set, and s->d is set to it) or at d; the contact
@@ -279,55 +248,9 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
+PETSC_INTERN PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
 {
   PetscFunctionBegin;
   s->predict = PolonskyKeer;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhPredictorRegisterAll_Private(void)
-{
-  PetscFunctionBegin;
-  if (AdhPredictorRegistered) PetscFunctionReturn(0);
-  AdhPredictorRegistered = PETSC_TRUE;
-  PetscCall(AdhPredictorRegister(ADHPREDICTORNONE, AdhPredictorCreate_None));
-  PetscCall(AdhPredictorRegister(ADHPREDICTORPOLONSKYKEER, AdhPredictorCreate_PolonskyKeer));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhPredictorDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhPredictorList));
-  AdhPredictorRegistered = PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  *list = AdhPredictorList;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
-{
-  PetscErrorCode (*create)(AdhSolver);
-
-  PetscFunctionBegin;
-  PetscCall(AdhPredictorRegisterAll_Private());
-  PetscCall(PetscFunctionListFind(AdhPredictorList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (none or polonsky-keer)", type);
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->predictor_type, type, sizeof(s->predictor_type)));
-  s->predictor_chosen = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhSolverGetPredictorType(AdhSolver s, AdhPredictorType *type)
-{
-  PetscFunctionBegin;
-  *type = s->predictor_type;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,116 @@
+/* AdhSolverSetFromOptions: the -adh_ options of the solver and of its types. */
+#include "solver/solverimpl.h"
+
+const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contact"};
+
+/* -adh_fields [LIST]: the fields to write, a comma-separated list of pressure, displacement, gap,
+   contact; given alone (or all, 1, true) all four, none (or 0, false) no fields. Inside
+   PetscOptionsBegin/End, so that -help shows it. */
+static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, AdhSolver s)
+{
+  char      value[256] = "", *item, *rest;
+  PetscBool set, all, none;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsString("-adh_fields", "Fields written for the states (pressure, displacement, gap, contact; comma-separated; alone: all four)", "AdhSolver", "", value, sizeof(value), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscStrInList(value, "all,1,true,yes", ',', &all));
+  PetscCall(PetscStrInList(value, "none,0,false,no", ',', &none));
+  if (!value[0] || all) s->fields = ADH_FIELD_ALL;
+  else if (none) s->fields = 0;
+  else {
+    s->fields = 0;
+    for (item = strtok_r(value, ",", &rest); item; item = strtok_r(NULL, ",", &rest)) {
+      PetscInt k;
+      for (k = 0; k < 4; k++) {
+        PetscBool same;
+        PetscCall(PetscStrcmp(item, AdhFieldNames[k], &same));
+        if (same) break;
+      }
+      PetscCheck(k < 4, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_fields: unknown field '%s' (pressure, displacement, gap, contact, or all)", item);
+      s->fields |= 1 << k;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+#define ParseFields(s) ParseFields_Private(PetscOptionsObject, s)
+
+PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
+{
+  PetscInt          n = 256;
+  PetscReal         path[256];
+  PetscBool         set, certify = s->certify;
+  char              control[64], criterion[64], predictor[64];
+  PetscFunctionList controls, criteria, predictors;
+  PetscBool         monitor_set;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridSetFromOptions(s->grid));
+  PetscCall(AdhGetReducedModulusFromOptions(s->comm, s->prefix, &s->Estar));
+  PetscCall(AdhIndenterSetFromOptions(s->comm, s->prefix, &s->indenter));
+  for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesion", "AdhSolver");
+  PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
+  PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
+  PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
+  PetscCall(AdhCriterionGetList_Private(&criteria));
+  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
+  if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
+  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
+  PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");
+  PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, &set));
+  if (set) s->boundary_set = PETSC_TRUE;
+  PetscCall(AdhControlGetList_Private(&controls));
+  PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", controls, s->control_type, control, sizeof(control), &set));
+  if (set) PetscCall(AdhSolverSetControlType(s, control));
+  PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force)", "AdhSolver", path, &n, &set));
+  if (set) {
+    PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
+    PetscCall(PetscFree(s->path));
+    PetscCall(PetscMalloc1(n, &s->path));
+    PetscCall(PetscArraycpy(s->path, path, n));
+    s->npath = n;
+  }
+  PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
+  PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
+  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: reach (its gap is below Sigma K_00, the gap it closes under its own critical tension: the JKR jump-in; the default), griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
+  PetscCall(AdhPredictorGetList_Private(&predictors));
+  PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
+  if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
+  PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "AdhSolver", s->predictor_rtol, &s->predictor_rtol, NULL));
+  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "AdhSolver", s->predictor_fourier, &s->predictor_fourier, NULL));
+  PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "AdhSolver", s->predictor_max_it, &s->predictor_max_it, NULL));
+  PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem output, monitoring and long runs", "AdhSolver");
+  PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
+  PetscCall(ParseFields(s));
+  PetscCall(PetscOptionsInt("-adh_fields_stride", "Write the fields of every K-th state (0, K, 2K, ...)", "AdhSolver", s->fields_stride, &s->fields_stride, NULL));
+  monitor_set = s->monitor;
+  PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolverMonitorSet", s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
+  PetscCall(PetscOptionsString("-adh_checkpoint", "Checkpoint file: the state after recorded states (replaced atomically), to go on from with -adh_restart", "AdhSolver", s->checkpoint, s->checkpoint, sizeof(s->checkpoint), NULL));
+  PetscCall(PetscOptionsInt("-adh_checkpoint_every", "Write the checkpoint after every K-th state (and when SIGTERM or SIGINT stops the run)", "AdhSolver", s->checkpoint_every, &s->checkpoint_every, NULL));
+  PetscCall(PetscOptionsString("-adh_restart", "Go on from this checkpoint (the options that shape the problem must be the checkpoint's)", "AdhSolver", s->restart, s->restart, sizeof(s->restart), NULL));
+  PetscOptionsEnd();
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
+  PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
+  PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
+  PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
+  PetscOptionsEnd();
+  s->certify = certify;
+  if (s->monitor && !monitor_set) PetscCall(AdhSolverMonitorSet(s, AdhSolverMonitorDefault, NULL, NULL));
+  PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
+  PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
+  PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
+  PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
+  PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
+  PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
+  PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
+  for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
+  if (s->ksp) PetscCall(KSPSetFromOptions(s->ksp));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,32 @@
+/* AdhSolverView: the solver's set-up, in words. */
+#include "solver/solverimpl.h"
+
+PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
+{
+  PetscBool isascii;
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "AdhSolver: adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(AdhGridView(s->grid, viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
+  if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
+  if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));
+  if (s->force_control) PetscCall(PetscViewerASCIIPrintf(viewer, "pull-off force resolved to a relative %g\n", (double)s->pulloff_rtol));
+  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "JKR contact radius of the smallest asperities (estimate) over the grid spacing: %g\n", (double)s->asperity_ac));
+  {
+    PetscLogDouble total, node;
+    PetscCall(AdhSolverEstimateMemory(s, &total, &node));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate: %.3g MB in all, %.3g MB on this node\n", total / 1e6, node / 1e6));
+  }
+  if (s->ksp) PetscCall(KSPView(s->ksp, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}

@@ -23,13 +23,22 @@ typedef struct {
   PetscErrorCode (*destroy)(AdhSolver);
 } AdhControlOps;
 
+/* What the detach test of the exact solution of a solve is, as far as an iterate tells. */
+typedef enum { ADH_DETACH_IN_DOUBT, ADH_DETACH_NONE, ADH_DETACH_SOME } AdhDetachDecision;
+
 /* What a detachment criterion does (impls/criterion/): evaluate the current state, removing the points
    that let go (detach) or giving the largest load over its limit on the set (ratio). */
 typedef struct {
   PetscErrorCode (*setup)(AdhSolver); /* at the solver's set-up: what the criterion needs on the grid */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
   PetscErrorCode (*destroy)(AdhSolver);
-  PetscBool certifiable; /* decided by p alone: the certified early stop of intermediate solves applies */
+  /* Optional, for the certified early stop of intermediate solves: the detach test of the exact
+     solution p*, decided from the iterate xC (on the set) when every point's decision holds for
+     any p within perr of it (perr bounds |p - p*| at every point). With the test in doubt,
+     *needed is the bound at which the decisions in doubt now would be made (the next check is
+     worth its cost below it); PETSC_MAX_REAL: check again at the next iteration; 0 with NONE:
+     decided for the rest of the solve. */
+  PetscErrorCode (*decide)(AdhSolver, Vec xC, PetscReal perr, AdhDetachDecision *, PetscReal *needed);
 } AdhCriterionOps;
 
 /* A copy of the contact state (force control: the state before a step, for pull-off). */
@@ -113,6 +122,7 @@ struct _n_AdhSolver {
   AdhCriterionOps crops;
   void           *crdata;
   PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings */
+  PetscBool       criterion_certify; /* crack-closure: its certified early stop (-adh_criterion_certify) */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
 
@@ -146,6 +156,8 @@ struct _n_AdhSolver {
   const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
   PetscReal bnorm;
   PetscBool certify, certify_solve, certified_stop;
+  PetscReal detach_perr;      /* the error bound below which the next detach decision is worth its cost */
+  PetscBool detach_none;      /* decided: the exact solution lets no point go */
   PetscBool certify_attach, certified_attach; /* the solve may stop, and did, once the points that join are certain */
   PetscReal attach_rnorm;     /* the residual below which the next attach check is worth its multiply */
   PetscInt  joined_step, joined_previous; /* points that joined in this step and in the one before */

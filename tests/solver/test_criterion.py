@@ -102,7 +102,7 @@ def test_flat_punch():
 def test_without_adhesion_both_criteria_agree():
     """dgamma = 0: either criterion is non-adhesive contact (every tensile point lets go). The
     path stops short of d = 0, where the apex would carry a pressure of rounding size whose sign
-    depends on the solves' path (the certified early stop applies to one criterion only)."""
+    depends on the solves' path (the certified early stops of the criteria differ)."""
     serial_only()
     curves = []
     for crit in ("pohrt-popov", "crack-closure"):
@@ -112,6 +112,28 @@ def test_without_adhesion_both_criteria_agree():
     a, b = curves
     assert np.array_equal(a["contact_points"], b["contact_points"])
     assert np.max(np.abs(a["force"] - b["force"])) <= 1e-12 * np.max(np.abs(a["force"]))
+
+
+def test_crack_closure_certified_stop_on_the_sphere():
+    """crack-closure's certified early stop (-adh_criterion_certify: its openings' error bounded
+    through K's row norms) on the JKR sphere, free boundary, loading from first touch and
+    unloading to pull-off: the same contact sets, set updates and forces as -adh_certify 0, with
+    fewer KSP iterations; off by default (its checks cost more time than they save)."""
+    serial_only()
+    opts = dict(n=64, size=1.0, E_star=1.0, gamma=2e-4, radius=1.0, start="adhesive", path=[0.0, 0.01, -0.01], steps=12,
+                criterion_certify=True)
+    on = adhbem.Solver(certify=True, **opts).solve_path()
+    off = adhbem.Solver(certify=False, **opts).solve_path()
+    k_on, k_off = int(on["ksp_iterations"].sum()), int(off["ksp_iterations"].sum())
+    Frel = np.max(np.abs(on["force"] - off["force"])) / np.max(np.abs(off["force"]))
+    say(f"\ncrack-closure certified stop, JKR sphere 64^2: KSP {k_on} vs {k_off} without; set updates"
+        f" {int(on['outer_iterations'].sum())}; largest tension {-on['force'].min():.5f}; max |dF|/max|F| = {Frel:.1e}")
+    assert np.array_equal(on["contact_points"], off["contact_points"])
+    assert np.array_equal(on["outer_iterations"], off["outer_iterations"])
+    assert Frel < 1e-8 and -on["force"].min() > 0
+    assert k_on < k_off
+    default = adhbem.Solver(**dict(opts, criterion_certify=False)).solve_path()
+    assert int(default["ksp_iterations"].sum()) == k_off
 
 
 @pytest.mark.mpi

@@ -173,21 +173,24 @@ def random_heights(N, L=1.0, modes=6, seed=7):
     return 0.01 * z / np.abs(z).max()
 
 
-def test_certified_stop_periodic():
+@pytest.mark.parametrize("criterion", ["pohrt-popov", "crack-closure"])
+def test_certified_stop_periodic(criterion):
     """Displacement control with adhesion on a rough periodic surface: certify on and off give the
-    same contact sets and forces, with fewer KSP iterations when on."""
+    same contact sets and forces, with fewer KSP iterations when on (pohrt-popov decides by p
+    alone; crack-closure, with -adh_criterion_certify, bounds its openings' error too, through K's
+    row norms)."""
     N = 64
     z = random_heights(N)
     h = z.max() - z
-    # the paper's criterion: the certified stop bounds p, and crack-closure's openings move with p
-    opts = dict(n=N, size=1.0, E_star=E, gamma=2e-4, boundary="periodic", start="hertz", criterion="pohrt-popov",
+    opts = dict(n=N, size=1.0, E_star=E, gamma=2e-4, boundary="periodic", start="hertz", criterion=criterion,
+                criterion_certify=criterion == "crack-closure",
                 topography=z, topography_kind="height", path=[0.25 * h.mean(), 0.6 * h.mean(), -0.02 * h.mean()], steps=8)
     t0 = time.perf_counter()
     on = adhbem.Solver(certify=True, **opts).solve_path()
     off = adhbem.Solver(certify=False, **opts).solve_path()
     Frel = np.max(np.abs(on["force"] - off["force"])) / np.max(np.abs(off["force"]))
     k_on, k_off = int(on["ksp_iterations"].sum()), int(off["ksp_iterations"].sum())
-    say(f"\ncertified stop, periodic N={N}: {len(on['d'])} states, points {on['contact_points'].min()}"
+    say(f"\ncertified stop, {criterion}, periodic N={N}: {len(on['d'])} states, points {on['contact_points'].min()}"
         f" .. {on['contact_points'].max()}, largest tension/Sigma {on['max_tension_ratio'].max():.4f};"
         f" KSP iterations {k_on} (certify) vs {k_off}; max |dF| / max|F| = {Frel:.1e};"
         f" {time.perf_counter() - t0:.2f} s")
@@ -198,7 +201,8 @@ def test_certified_stop_periodic():
     assert k_on < k_off
 
 
-def test_certified_attach_same_sets(tmp_path):
+@pytest.mark.parametrize("criterion", ["pohrt-popov", "crack-closure"])
+def test_certified_attach_same_sets(tmp_path, criterion):
     """The attach test decided before the solve has converged (the gaps' error bounded through
     K's row norm): on a rough periodic cell with adhesion and reach attach, loading then unloading,
     it fires, and every state has the same contact set (mask), the same number of set updates and
@@ -207,7 +211,7 @@ def test_certified_attach_same_sets(tmp_path):
     base = [EXE, "-adh_n", "64", "-adh_size", "64", "-adh_indenter", "rough", "-adh_hurst", "0.8",
             "-adh_rms_slope", "0.1", "-adh_seed", "3", "-adh_boundary", "periodic", "-adh_gamma", "0.004",
             "-adh_start", "adhesive", "-adh_attach", "reach", "-adh_path", "0,0.6,-0.4", "-adh_steps", "8",
-            "-adh_fields", "contact", "-adh_criterion", "pohrt-popov"]  # certifiable: decided by p alone
+            "-adh_fields", "contact", "-adh_criterion", criterion] + (["-adh_criterion_certify"] if criterion == "crack-closure" else [])
     runs = {}
     for certify in (1, 0):
         out = tmp_path / f"c{certify}.h5"
@@ -218,13 +222,15 @@ def test_certified_attach_same_sets(tmp_path):
             c = {k: f["curve"][k][()] for k in ("force", "contact_points", "outer_iterations", "ksp_iterations")}
             c["masks"] = f["fields/contact"][()]
         c["attach"] = r.stdout.count("(certified attach)")
+        c["stop"] = r.stdout.count("(certified stop)")
         runs[certify] = c
     on, off = runs[1], runs[0]
     Frel = np.max(np.abs(on["force"] - off["force"])) / np.max(np.abs(off["force"]))
-    say(f"\ncertified attach, rough 64^2: {on['attach']} certified attach stops; KSP {int(on['ksp_iterations'].sum())}"
+    say(f"\ncertified attach, {criterion}, rough 64^2: {on['attach']} certified attach stops, {on['stop']} certified stops; KSP {int(on['ksp_iterations'].sum())}"
         f" vs {int(off['ksp_iterations'].sum())} without certification; set updates {int(on['outer_iterations'].sum())};"
         f" max |dF|/max|F| = {Frel:.1e}")
     assert on["attach"] > 0 and off["attach"] == 0
+    assert on["stop"] > 0 and off["stop"] == 0
     assert np.array_equal(on["masks"], off["masks"])
     assert np.array_equal(on["contact_points"], off["contact_points"])
     assert np.array_equal(on["outer_iterations"], off["outer_iterations"])

@@ -15,7 +15,7 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.certifiable && !s->force_control ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.decide && !s->force_control ? "on" : "off"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
   if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));

@@ -196,7 +196,7 @@ static PetscErrorCode AttachDecided(AdhSolver s, Vec xC, PetscReal rnorm, PetscB
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   for (k = 0; k < s->nlocal; k++) {
     PetscReal limit, margin;
-    if (!AttachLimit(s, reach, K00, ta, tu, NULL, k, &limit)) continue; /* certifiable criteria only: not griffith */
+    if (!AttachLimit(s, reach, K00, ta, tu, NULL, k, &limit)) continue;
     margin = PetscRealPart(ga[k]) - limit;
     if (PetscAbsReal(margin) <= bound) {
       counts[0]++;
@@ -215,12 +215,12 @@ static PetscErrorCode AttachDecided(AdhSolver s, Vec xC, PetscReal rnorm, PetscB
 
 /* KSP convergence test: the full tolerance ||r|| <= max(rtol ||b||, atol), or, for a solve whose
    only job is to decide the next update of the set, a certified early stop. Since every eigenvalue
-   of K_CC is at least lambda_min (Cauchy interlacing), |p_k - p*_k| <= ||r||_2 / lambda_min; once
-   every point's margin |p_k + Sigma_k| exceeds that bound and some point violates, the set of
-   points to detach is the exact solution's and the solve can stop. When none violates, the attach
-   test may be decided in the same way (AttachDecided). The factor 2 covers the difference between
-   CG's recursive residual and the true one. Either way the set changes, so the last solve of a
-   step always runs to the full tolerance. */
+   of K_CC is at least lambda_min (Cauchy interlacing), |p_k - p*_k| <= perr = ||r||_2 / lambda_min;
+   once the criterion's decide (AdhCriterionOps) says that within that bound some points let go
+   and every point's decision is the exact solution's, the solve can stop. When it says that none
+   lets go, the attach test may be decided in the same way (AttachDecided). The factor 2 covers
+   the difference between CG's recursive residual and the true one. Either way the set changes,
+   so the last solve of a step always runs to the full tolerance. */
 PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
 {
   AdhSolver          s = (AdhSolver)ctx;
@@ -248,25 +248,21 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
     PetscFunctionReturn(0);
   }
   if (s->certify_solve && it > 0) {
-    Vec                x;
-    const PetscScalar *xa;
-    PetscInt           n, k;
-    PetscReal          bound = 2.0 * rnorm / s->lambda_set, v[2] = {-PETSC_MAX_REAL, 0.0};
+    Vec               x;
+    const PetscReal   perr     = 2.0 * rnorm / s->lambda_set;
+    AdhDetachDecision decision = s->detach_none ? ADH_DETACH_NONE : ADH_DETACH_IN_DOUBT;
 
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
-    PetscCall(VecGetLocalSize(x, &n));
-    PetscCall(VecGetArrayRead(x, &xa));
-    for (k = 0; k < n; k++) {
-      const PetscReal margin = PetscRealPart(xa[k]) + PetscRealPart(s->threshold_local[k]);
-      v[0]                   = PetscMax(v[0], -PetscAbsReal(margin)); /* max of -|margin| = -min |margin| */
-      if (margin < 0) v[1] = 1.0;
+    if (!s->detach_none && perr <= s->detach_perr) {
+      PetscReal needed;
+      PetscCall(s->crops.decide(s, x, perr, &decision, &needed));
+      if (decision == ADH_DETACH_IN_DOUBT) s->detach_perr = needed;
+      else if (decision == ADH_DETACH_NONE && needed == 0) s->detach_none = PETSC_TRUE;
     }
-    PetscCall(VecRestoreArrayRead(x, &xa));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ksp)));
-    if (-v[0] > bound && v[1] > 0) {
+    if (decision == ADH_DETACH_SOME) {
       *reason           = KSP_CONVERGED_ATOL; /* marked by certified_stop */
       s->certified_stop = PETSC_TRUE;
-    } else if (-v[0] > bound && s->certify_attach && rnorm <= s->attach_rnorm) {
+    } else if (decision == ADH_DETACH_NONE && s->certify_attach && rnorm <= s->attach_rnorm) {
       PetscBool certain;
       PetscReal needed;
       PetscCall(AttachDecided(s, x, rnorm, &certain, &needed));
@@ -314,10 +310,13 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
   s->threshold_local = s->thrC;
-  s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.certifiable && s->lambda_set > 0);
+  s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.decide && s->lambda_set > 0);
+  s->detach_perr     = PETSC_MAX_REAL;
+  s->detach_none     = PETSC_FALSE;
   /* the attach test of displacement control (the gap of h at s->d), where points have been
-     joining lately: elsewhere (unloading) its checks would cost a multiply each for nothing */
-  s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous));
+     joining lately: elsewhere (unloading) its checks would cost a multiply each for nothing; not
+     griffith, whose limits come from the detach test of the converged pressure */
+  s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous) && s->attach != ADH_ATTACH_GRIFFITH);
   s->attach_rnorm   = PETSC_MAX_REAL;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
   PetscCall(KSPSolve(s->ksp, s->bC, s->pC));

@@ -33,10 +33,33 @@ static PetscErrorCode Evaluate_PohrtPopov(AdhSolver s, PetscBool detach, PetscIn
   PetscFunctionReturn(0);
 }
 
+/* Decided by p alone: every point whose margin |p + Sigma| exceeds perr lets go (or stays) as it
+   would at the exact solution. Cheap: checked at every iteration. */
+static PetscErrorCode Decide_PohrtPopov(AdhSolver s, Vec xC, PetscReal perr, AdhDetachDecision *decision, PetscReal *needed)
+{
+  const PetscScalar *xa;
+  PetscInt           n, k;
+  PetscReal          v[2] = {-PETSC_MAX_REAL, 0.0};
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(xC, &n));
+  PetscCall(VecGetArrayRead(xC, &xa));
+  for (k = 0; k < n; k++) {
+    const PetscReal margin = PetscRealPart(xa[k]) + PetscRealPart(s->threshold_local[k]);
+    v[0]                   = PetscMax(v[0], -PetscAbsReal(margin)); /* max of -|margin| = -min |margin| */
+    if (margin < 0) v[1] = 1.0;
+  }
+  PetscCall(VecRestoreArrayRead(xC, &xa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPIU_MAX, s->comm));
+  *decision = -v[0] > perr ? (v[1] > 0 ? ADH_DETACH_SOME : ADH_DETACH_NONE) : ADH_DETACH_IN_DOUBT;
+  *needed   = PETSC_MAX_REAL;
+  PetscFunctionReturn(0);
+}
+
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver s)
 {
   PetscFunctionBegin;
-  s->crops.evaluate    = Evaluate_PohrtPopov;
-  s->crops.certifiable = PETSC_TRUE;
+  s->crops.evaluate = Evaluate_PohrtPopov;
+  s->crops.decide   = Decide_PohrtPopov;
   PetscFunctionReturn(0);
 }

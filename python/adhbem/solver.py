@@ -9,7 +9,6 @@ all ``Nx`` points of each, so a local array has shape ``(rows, Nx)`` and index `
 import importlib.util
 import os
 import sys
-import time
 
 import adhbem_build
 import petsc4py
@@ -169,11 +168,6 @@ def set_local_rows(vec, obj, array):
     if array.shape != (j1 - j0, Nx):
         raise ValueError(f"expected shape {(j1 - j0, Nx)} (local rows) or {(Ny, Nx)}, got {array.shape}")
     vec.getArray()[:] = array.ravel()
-
-
-def _min():
-    from mpi4py import MPI
-    return MPI.MIN
 
 
 def gather(vec, obj):
@@ -343,17 +337,7 @@ class Solver:
     def solve_path(self):
         """Runs the option path and returns the curve. With option output, writes the results file
         (and the fields of its states with option fields)."""
-        output = self._options.get("output")
-        began = time.time()
-        try:
-            _adhbem.solver_solve_path(self._s)
-        except BaseException:
-            # a path that fails or is stopped still writes what it computed (complete = 0)
-            if output and self._written_since(output, began):
-                self._save_topography(output)
-            raise
-        if output:
-            self._save_topography(output)
+        _adhbem.solver_solve_path(self._s)
         return self.curve()
 
     def iterate_path(self):
@@ -415,25 +399,6 @@ class Solver:
         """Writes the curve (and, with option fields, the current fields, as those of the last row)
         to file and its CSV."""
         _adhbem.solver_write(self._s, str(file))
-        self._save_topography(file)
-
-    def _written_since(self, file, began):
-        """Whether file was written after time began, as every rank learns from rank 0."""
-        comm = self.compliance.getComm()
-        written = comm.getRank() != 0 or (os.path.exists(file) and os.path.getmtime(file) >= began - 1)
-        return bool(comm.tompi4py().allreduce(int(written), op=_min()))
-
-    def _save_topography(self, file):
-        # libadhbem writes an array indenter's kind but not its values: they go to /topography as a
-        # rough surface's heights do, so -adh_topography FILE -adh_topography_dataset topography
-        # (with its topography_kind) gives the same profile.
-        if self._topography is None:
-            return
-        viewer = PETSc.Viewer().createHDF5(os.fspath(file), mode=PETSc.Viewer.Mode.APPEND, comm=self.compliance.getComm())
-        try:
-            self._topography.view(viewer)
-        finally:
-            viewer.destroy()
 
     def view(self):
         _adhbem.solver_view(self._s)
@@ -454,8 +419,7 @@ class Solver:
         else:
             topography = topography.copy()  # as it is now: the user may change theirs
         _adhbem.solver_set_topography(self._s, topography, str(kind))
-        topography.setName("topography")
-        self._topography = topography
+        self._topography = topography  # kept: the solver holds a reference, libadhbem writes it
 
     def _field_from_array(self, name, array, nonnegative=False):
         import numpy as np

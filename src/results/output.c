@@ -80,6 +80,7 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], 
 }
 
 static PetscErrorCode WriteSurface(AdhSolver, PetscViewer);
+static PetscErrorCode WriteArrayTopography(AdhSolver, PetscViewer);
 static PetscErrorCode Begin(AdhSolver, PetscViewer, const char[]);
 
 PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer *viewer)
@@ -95,6 +96,7 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   /* a rough surface, generated again, goes in now, while the contact set and its solver's vectors
      are small (at the close they may be the largest of the run) */
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(WriteSurface(s, *viewer));
+  if (s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(WriteArrayTopography(s, *viewer));
   PetscCall(Begin(s, *viewer, file));
   PetscFunctionReturn(0);
 }
@@ -283,6 +285,25 @@ static PetscErrorCode WriteSurface(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "max_height", PETSC_REAL, &sf->max_height));
   /* generated again rather than kept through the run: the same bits, one FFT, no grid vector */
   PetscCall(AdhSurfaceWriteHeights(s->grid, sf, v, "topography"));
+  PetscFunctionReturn(0);
+}
+
+/* An array indenter's profile as the user gave it (heights z or the gap h, as the attribute
+   topography_kind says) as the dataset /topography, so that -adh_topography FILE
+   -adh_topography_dataset topography gives the same profile back. The user's Vec lends its values
+   under that name. */
+static PetscErrorCode WriteArrayTopography(AdhSolver s, PetscViewer v)
+{
+  PetscObject z = (PetscObject)s->indenter.z;
+  const char *name;
+  char        own[256];
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectGetName(z, &name));
+  PetscCall(PetscStrncpy(own, name, sizeof(own)));
+  PetscCall(PetscObjectSetName(z, "topography"));
+  PetscCall(VecView((Vec)z, v));
+  PetscCall(PetscObjectSetName(z, own));
   PetscFunctionReturn(0);
 }
 

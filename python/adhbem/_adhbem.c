@@ -5,7 +5,6 @@
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
-#include "geometry/surface.h"
 
 /* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \

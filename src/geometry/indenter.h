@@ -2,7 +2,6 @@
 #ifndef ADHBEM_INDENTER_H
 #define ADHBEM_INDENTER_H
 #include "adhbem.h"
-#include "geometry/surface.h"
 
 typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH, ADH_INDENTER_ARRAY } AdhIndenterType;
 PETSC_EXTERN const char *const AdhIndenterTypes[];

@@ -21,7 +21,7 @@
    Same machine (libm, CPU features) assumed: FFTW's estimate and libm's log/cos are per build. */
 #include <fftw3-mpi.h>
 #include <stdint.h>
-#include "geometry/surface.h"
+#include "adhbem.h"
 
 /* A mode whose wavenumber lies on the cut-off to this relative rounding counts as inside. */
 #define EDGE_RTOL 1e-9

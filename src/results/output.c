@@ -302,8 +302,11 @@ static PetscErrorCode WriteArrayTopography(AdhSolver s, PetscViewer v)
   PetscCall(PetscObjectGetName(z, &name));
   PetscCall(PetscStrncpy(own, name, sizeof(own)));
   PetscCall(PetscObjectSetName(z, "topography"));
-  PetscCall(VecView((Vec)z, v));
-  PetscCall(PetscObjectSetName(z, own));
+  {
+    PetscErrorCode ierr = VecView((Vec)z, v);
+    PetscCall(PetscObjectSetName(z, own)); /* the user's name back, also when the view failed */
+    PetscCall(ierr);
+  }
   PetscFunctionReturn(0);
 }
 

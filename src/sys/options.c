@@ -1,7 +1,7 @@
 /* adhbem's own options: their names, and the check that every -adh_ option given is one of them,
    so that a misspelled option (-adh_gama 0.01) stops the run, naming the nearest option, instead
    of running with the default. The options of the solver's KSP and PC (-adh_ksp_*, -adh_pc_*)
-   are PETSc's, which reads some only during solves: they are not checked. tests/test_options.py
+   are PETSc's, which reads some only during solves: they are not checked. tests/sys/test_options.py
    keeps this list equal to what -help shows. */
 #include "sys/sysimpl.h"
 

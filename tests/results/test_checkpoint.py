@@ -1,5 +1,5 @@
 """Checkpoint and restart (-adh_checkpoint, -adh_restart): a run stopped by SIGTERM (which abandons
-the step in progress and closes the results so far; tests/test_stop.py stops jobs through mpirun)
+the step in progress and closes the results so far; tests/results/test_stop.py stops jobs through mpirun)
 or killed by SIGKILL goes on from its
 checkpoint to the curve of the uninterrupted run: bit for bit on the same number of ranks
 (deterministic FFT plans: -adh_fftw_planner estimate), to 1e-10 on another; checkpoints that do

@@ -1,7 +1,7 @@
 /* The solver's registered types in one place: detachment criteria, load controls and contact-set
    predictors. A new type is one file in impls/<kind>/ that fills in the kind's ops table
-   (solverimpl.h), and one line here (docs/code-map.md). Here too the results layer is bound to
-   the path (AdhResultsOps): the one place the solver names it. */
+   (solverimpl.h), and its prototype and registration here (docs/code-map.md). Here too the
+   results layer is bound to the path (AdhResultsOps): the one place the solver names it. */
 #include "results/resultsimpl.h"
 
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver);

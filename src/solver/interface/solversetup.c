@@ -94,7 +94,6 @@ static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
   PetscFunctionReturn(0);
 }
 
-PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *);
 
 /* After the profile h is set or replaced: its mean (a periodic cell is in full contact at
    d = mean(h)), and a contact state of nothing in contact. */

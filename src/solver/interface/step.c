@@ -249,11 +249,15 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
   }
   if (s->certify_solve && it > 0) {
     Vec               x;
-    const PetscReal   perr     = 2.0 * rnorm / s->lambda_set;
-    AdhDetachDecision decision = s->detach_none ? ADH_DETACH_NONE : ADH_DETACH_IN_DOUBT;
+    const PetscReal   perr       = 2.0 * rnorm / s->lambda_set;
+    const PetscBool   attach_due = (PetscBool)(s->certify_attach && rnorm <= s->attach_rnorm);
+    AdhDetachDecision decision   = ADH_DETACH_IN_DOUBT;
 
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
-    if (!s->detach_none && perr <= s->detach_perr) {
+    /* decided at this iterate: when the bound has come down far enough, and, once the exact
+       solution is known to let nothing go, again before an attach check (the step's detach test
+       runs on the iterate the solve stops at, which must let nothing go either) */
+    if ((!s->detach_none && perr <= s->detach_perr) || (s->detach_none && attach_due)) {
       PetscReal needed;
       PetscCall(s->crops.decide(s, x, perr, &decision, &needed));
       if (decision == ADH_DETACH_IN_DOUBT) s->detach_perr = needed;
@@ -262,7 +266,7 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
     if (decision == ADH_DETACH_SOME) {
       *reason           = KSP_CONVERGED_ATOL; /* marked by certified_stop */
       s->certified_stop = PETSC_TRUE;
-    } else if (decision == ADH_DETACH_NONE && s->certify_attach && rnorm <= s->attach_rnorm) {
+    } else if (decision == ADH_DETACH_NONE && attach_due) {
       PetscBool certain;
       PetscReal needed;
       PetscCall(AttachDecided(s, x, rnorm, &certain, &needed));

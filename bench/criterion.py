@@ -100,19 +100,24 @@ def unload(s, d0, scale, on_threshold):
     return counts
 
 
+def johnson_wave(N, ny, m, n, alpha, L=1.0):
+    """Johnson's wavy surface with wavevector (m, n) on a periodic N x ny cell of width L, grid
+    spacing L/N, amplitude D = 0.01 lam: (lam, D, dgamma for alpha, p*, the gap profile h)."""
+    hgrid = L / N
+    lam = L / math.hypot(m, n)
+    D = 0.01 * lam
+    dgamma = alpha ** 2 * math.pi ** 2 * E * D ** 2 / (2 * lam)
+    pstar = math.pi * E * D / lam
+    X, Y = np.meshgrid((np.arange(N) + 0.5) * hgrid, (np.arange(ny) + 0.5) * hgrid)
+    return lam, D, dgamma, pstar, D * (1 - np.cos(2 * math.pi * (m * X + n * Y) / L))
+
+
 def wave(N, m, n, criterion, alpha=0.3):
     """Johnson's wavy surface with wavevector (m, n) on an N x N periodic cell (N x 4 along an axis:
     the solution does not depend on y)."""
     ny = 4 if n == 0 else N
     L, hgrid = 1.0, 1.0 / N
-    lam = L / math.hypot(m, n)
-    D = 0.01 * lam
-    dgamma = alpha ** 2 * math.pi ** 2 * E * D ** 2 / (2 * lam)
-    pstar = math.pi * E * D / lam
-    x = (np.arange(N) + 0.5) * hgrid
-    y = (np.arange(ny) + 0.5) * hgrid
-    X, Y = np.meshgrid(x, y)
-    h = D * (1 - np.cos(2 * math.pi * (m * X + n * Y) / L))
+    lam, D, dgamma, pstar, h = johnson_wave(N, ny, m, n, alpha, L)
     s = adhbem.Solver(n=(N, ny), size=(L, ny * hgrid), gamma=dgamma, E_star=E, boundary="periodic",
                       topography=h, topography_kind="gap", start="hertz", criterion=criterion, **OPTIONS)
     ratios, tension = [], [0.0]

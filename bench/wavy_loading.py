@@ -44,6 +44,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import adhbem  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from criterion import johnson_wave  # noqa: E402  (the wave of ./run bench criterion)
 
 E = 1.0
 
@@ -102,14 +104,7 @@ def load(N, alpha=0.3, attach="reach", dp=0.005, diagonal=False, criterion="crac
     else:
         m, n = 1, 0
     hgrid = L / N
-    lam = L / math.hypot(m, n)
-    D = 0.01 * lam
-    dgamma = alpha ** 2 * math.pi ** 2 * E * D ** 2 / (2 * lam)
-    pstar = math.pi * E * D / lam
-    x = (np.arange(N) + 0.5) * hgrid
-    y = (np.arange(ny) + 0.5) * hgrid
-    X, Y = np.meshgrid(x, y)
-    h = D * (1 - np.cos(2 * math.pi * (m * X + n * Y) / L))
+    lam, D, dgamma, pstar, h = johnson_wave(N, ny, m, n, alpha, L)
     cell = L * ny * hgrid
     s = adhbem.Solver(n=(N, ny), size=(L, ny * hgrid), gamma=dgamma, E_star=E, boundary="periodic",
                       topography=h, topography_kind="gap", start="adhesive", criterion=criterion,

@@ -132,3 +132,21 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
   PetscCheck(!message[0], PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode AdhFunctionListNames_Private(PetscFunctionList list, char names[], size_t len)
+{
+  const char **array;
+  int          n, m = 0;
+
+  PetscFunctionBegin;
+  names[0] = 0;
+  PetscCall(PetscFunctionListGet(list, &array, &n));
+  for (int k = 0; k < n; k++) /* PETSc 3.18 may add an empty name */
+    if (array[k] && array[k][0]) array[m++] = array[k];
+  for (int k = 0; k < m; k++) {
+    PetscCall(PetscStrlcat(names, array[k], len));
+    if (k < m - 1) PetscCall(PetscStrlcat(names, k < m - 2 ? ", " : " or ", len));
+  }
+  PetscCall(PetscFree(array));
+  PetscFunctionReturn(0);
+}

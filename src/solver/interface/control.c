@@ -42,7 +42,11 @@ PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
   PetscCall(PetscStrcmp(s->control_type, type, &same));
   if (same) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListFind(AdhControlList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_control: unknown load control '%s' (displacement or force)", type);
+  if (!create) {
+    char names[256];
+    PetscCall(AdhFunctionListNames_Private(AdhControlList, names, sizeof(names)));
+    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_control: unknown load control '%s' (%s)", type, names);
+  }
   PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_control: the load control cannot change after set-up");
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   PetscCall(PetscMemzero(&s->cops, sizeof(s->cops)));

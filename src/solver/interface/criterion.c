@@ -43,7 +43,11 @@ PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
   PetscCall(PetscStrcmp(s->criterion_type, type, &same));
   if (same) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListFind(AdhCriterionList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_criterion: unknown detachment criterion '%s' (pohrt-popov or crack-closure)", type);
+  if (!create) {
+    char names[256];
+    PetscCall(AdhFunctionListNames_Private(AdhCriterionList, names, sizeof(names)));
+    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_criterion: unknown detachment criterion '%s' (%s)", type, names);
+  }
   PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_criterion: the detachment criterion cannot change after set-up");
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(PetscMemzero(&s->crops, sizeof(s->crops)));

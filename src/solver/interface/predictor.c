@@ -42,7 +42,11 @@ PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
   PetscFunctionBegin;
   PetscCall(AdhSolverInitializePackage());
   PetscCall(PetscFunctionListFind(AdhPredictorList, type, &create));
-  PetscCheck(create, s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (none or polonsky-keer)", type);
+  if (!create) {
+    char names[256];
+    PetscCall(AdhFunctionListNames_Private(AdhPredictorList, names, sizeof(names)));
+    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (%s)", type, names);
+  }
   PetscCall(create(s));
   PetscCall(PetscStrncpy(s->predictor_type, type, sizeof(s->predictor_type)));
   s->predictor_chosen = PETSC_TRUE;

@@ -223,6 +223,7 @@ PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec
 #define ADH_SIGMA_AT(a, uniform, k) ((a) ? PetscRealPart((a)[k]) : (uniform))
 /* the KSP convergence test of the set's solves: full tolerance, or the certified early stop (step.c) */
 PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *);
+PETSC_INTERN PetscErrorCode AdhSolverSetIterate_Private(AdhSolver, Vec xC);
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 /* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control

@@ -141,7 +141,7 @@ PetscErrorCode AdhFunctionListNames_Private(PetscFunctionList list, char names[]
   PetscFunctionBegin;
   names[0] = 0;
   PetscCall(PetscFunctionListGet(list, &array, &n));
-  for (int k = 0; k < n; k++) /* PETSc 3.18 may add an empty name */
+  for (int k = 0; k < n; k++) /* PetscFunctionListGet counts a closing NULL, for PetscOptionsEList */
     if (array[k] && array[k][0]) array[m++] = array[k];
   for (int k = 0; k < m; k++) {
     PetscCall(PetscStrlcat(names, array[k], len));

@@ -166,6 +166,23 @@ static PetscErrorCode RestoreGriffithLimits(AdhSolver s, const PetscScalar **la)
   PetscFunctionReturn(0);
 }
 
+/* The solve's iterate xC into p on the set (p off the set stays): the state the certified checks
+   look at. Its gap is no longer current. */
+PetscErrorCode AdhSolverSetIterate_Private(AdhSolver s, Vec xC)
+{
+  const PetscScalar *xa;
+  PetscScalar       *pa;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(xC, &xa));
+  PetscCall(VecGetArray(s->p, &pa));
+  for (PetscInt k = 0; k < s->nset_local; k++) pa[s->set_local[k]] = xa[k];
+  PetscCall(VecRestoreArray(s->p, &pa));
+  PetscCall(VecRestoreArrayRead(xC, &xa));
+  s->gap_current = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /* Is the attach test of the exact solution already decided by the iterate x_C of a solve with
    residual rnorm? The gaps of x differ from the exact ones by K_{:,C} (x - p*), at most
    rho |x - p*|_2 <= rho ||r||_2 / lambda_min at every point (rho bounds K's row norms; the
@@ -173,23 +190,22 @@ static PetscErrorCode RestoreGriffithLimits(AdhSolver s, const PetscScalar **la)
    that from its limit and one at least joins; then g is left as the gap of x (the attach test
    takes it). Otherwise *needed is the residual at which the points in doubt now would be
    decided, or 0 when the test is decided and lets nobody join (the solve must converge: it is
-   the step's last). One compliance multiply. */
+   the step's last). One compliance multiply, none when the criterion's decision at this iterate
+   left its gap (crack-closure). */
 static PetscErrorCode AttachDecided(AdhSolver s, Vec xC, PetscReal rnorm, PetscBool *certain, PetscReal *needed)
 {
-  const PetscScalar *xa, *ga, *ta;
-  PetscScalar       *pa;
+  const PetscScalar *ga, *ta;
   PetscReal          tu, rho, bound, v[2] = {PETSC_MAX_REAL, 0.0};
   PetscInt           k, counts[2] = {0, 0}; /* points in doubt, points that join */
   const PetscBool    reach = AttachReach(s);
   const PetscReal    K00   = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
 
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(xC, &xa));
-  PetscCall(VecGetArray(s->p, &pa));
-  for (k = 0; k < s->nset_local; k++) pa[s->set_local[k]] = xa[k];
-  PetscCall(VecRestoreArray(s->p, &pa));
-  PetscCall(VecRestoreArrayRead(xC, &xa));
-  PetscCall(AdhSolverComputeGap_Private(s));
+  /* the criterion's decision at this iterate may have left p and its gap (crack-closure) */
+  if (!s->gap_current) {
+    PetscCall(AdhSolverSetIterate_Private(s, xC));
+    PetscCall(AdhSolverComputeGap_Private(s));
+  }
   PetscCall(MatAdhComplianceGetRowNormBound(s->K, &rho));
   bound = 2.0 * rnorm * rho / s->lambda_set;
   PetscCall(VecGetArrayRead(s->g, &ga));

@@ -495,17 +495,11 @@ static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, Petsc
    has come down to where the decisions in doubt at the last check would be made. */
 static PetscErrorCode Decide_CrackClosure(AdhSolver s, Vec xC, PetscReal perr, AdhDetachDecision *decision, PetscReal *needed)
 {
-  const PetscScalar *xa;
-  PetscScalar       *pa;
-
   PetscFunctionBegin;
-  PetscCall(VecGetArrayRead(xC, &xa));
-  PetscCall(VecGetArray(s->p, &pa));
-  for (PetscInt k = 0; k < s->nset_local; k++) pa[s->set_local[k]] = xa[k];
-  PetscCall(VecRestoreArray(s->p, &pa));
-  PetscCall(VecRestoreArrayRead(xC, &xa));
-  s->gap_current = PETSC_FALSE;
+  PetscCall(AdhSolverSetIterate_Private(s, xC));
   PetscCall(Rules(s, PETSC_FALSE, perr, NULL, NULL, decision, needed));
+  /* Rules left the gap of this iterate in g: an attach check, which follows only a NONE, takes it */
+  s->gap_current = (PetscBool)(*decision == ADH_DETACH_NONE);
   PetscFunctionReturn(0);
 }
 

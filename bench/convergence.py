@@ -27,7 +27,7 @@ dominated by the modes near the cut-off: q^4 C(q) q grows like q^(3-2H).) The sm
 JKR contact radius at pull-off is a_c = (9 pi dgamma R^2/(8 E*))^(1/3); a_c/h on each grid is
 printed with the table (an order of magnitude, not a sharp number).
 
-The problem: periodic cell L x L, E* = 1, -adh_start adhesive -adh_attach reach, displacement
+The problem: periodic cell L x L, E* = 1, -adh_start adhesive (each criterion's default attach rule: griffith with crack-closure, reach with pohrt-popov), displacement
 control along 0 -> d1 -> 0 -> -d1, --steps steps a leg (the run ends at pull-off), with
 -adh_criterion pohrt-popov and -adh_criterion crack-closure. The surface goes to build/adhbem as a
 gap profile (-adh_indenter file -adh_topography_kind gap), h = zmax - z with zmax the largest
@@ -225,12 +225,12 @@ def run(surface, N, h, d1, gamma, criterion, steps, np_, legs=3, extra=(), keep=
         topo = os.path.join(tmp, "gap.npy")
         np.save(topo, np.ascontiguousarray(h, dtype=np.float64))
         out = os.path.join(keep or tmp, f"{tag}_{criterion.replace('/', '+')}_{N}.h5")
-        rule, _, attach = criterion.partition("/")  # criterion[/attach rule], attach reach by default
+        rule, _, attach = criterion.partition("/")  # criterion[/attach rule], the criterion's default attach rule without
         cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE,
                "-adh_n", str(N), "-adh_size", repr(surface.L), "-adh_E_star", repr(E_STAR),
                "-adh_boundary", "periodic", "-adh_indenter", "file", "-adh_topography", topo,
                "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma), "-adh_criterion", rule,
-               "-adh_start", "adhesive", "-adh_attach", attach or "reach", "-adh_control", "displacement",
+               "-adh_start", "adhesive"] + (["-adh_attach", attach] if attach else []) + ["-adh_control", "displacement",
                "-adh_path", ",".join(repr(v) for v in path(d1, legs)), "-adh_steps", str(steps),
                "-adh_output", out] + list(extra)
         env = dict(os.environ)
@@ -413,8 +413,8 @@ def main():
     ap.add_argument("--legs", type=int, default=3, choices=(2, 3),
                     help="3: 0 -> d1 -> 0 -> -d1 (default), 2: 0 -> d1 -> -d1 (coarser retraction steps)")
     ap.add_argument("--gamma", type=float, help="dgamma for the chosen configurations (units of the coarsest spacing, E* = 1)")
-    ap.add_argument("--criteria", default=",".join(CRITERIA), help="detachment criteria, comma-separated, each with /ATTACH for another attach rule than reach "
-                         "(crack-closure/griffith)")
+    ap.add_argument("--criteria", default=",".join(CRITERIA), help="detachment criteria, comma-separated, each with /ATTACH for another attach rule than its "
+                         "default (griffith with crack-closure, reach with pohrt-popov): crack-closure/reach")
     ap.add_argument("--seed", type=int, default=1, help="seed of the surface's Fourier coefficients")
     ap.add_argument("--depth", type=float, default=0.25,
                     help="the deepest indentation: the fraction of the (finest) gap profile below it")

@@ -1,7 +1,7 @@
 """Accuracy of the detachment criterion: the effective work of adhesion against edge direction
 and grid.
 
-    ./run bench criterion [--criterion pohrt-popov,crack-closure] [--radius R] [--quick] [--fine]
+    ./run bench criterion [--criterion pohrt-popov,crack-closure] [--radius R] [--radius-max R] [--quick] [--fine]
 
 A contact that holds tension lets go where the criterion says so. At that state the analytic
 solution of the case gives back the work of adhesion the criterion acted with: dgamma_eff. A
@@ -214,11 +214,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--criterion", default="pohrt-popov,crack-closure")
     ap.add_argument("--radius", type=float, help="crack-closure's averaging radius (-adh_criterion_radius)")
+    ap.add_argument("--radius-max", type=float, help="crack-closure's largest averaging radius (-adh_criterion_radius_max;"
+                    " equal to the radius: a fixed window)")
     ap.add_argument("--quick", action="store_true", help="the coarse grids only")
     ap.add_argument("--fine", action="store_true", help="also a third, finer grid for the sphere and the punch")
     args = ap.parse_args()
     if args.radius is not None:
         OPTIONS["criterion_radius"] = args.radius
+    if args.radius_max is not None:
+        OPTIONS["criterion_radius_max"] = args.radius_max
     cases = [(wave, (256, 1, 0)), (wave, (512, 1, 0)), (wave, (2048, 1, 0)), (wave, (256, 2, 1)), (wave, (256, 1, 1)),
              (wave, (512, 4, 1)), (wave, (512, 3, 1)), (wave, (512, 5, 2)),
              (sphere, (25,)), (cone, (40,)), (punch, (17.5,))]

@@ -30,7 +30,7 @@ def jkr_theory(gamma, R, E):
     return F_adh, a_c, d_c
 
 
-# the paper's criterion and loop (adhbem's defaults are crack-closure and reach)
+# the paper's criterion and loop (adhbem's defaults are crack-closure and griffith)
 PAPER = {"criterion": "pohrt-popov", "attach": "penetration"}
 
 

@@ -80,7 +80,9 @@ def describe(params):
     """The features of a run that a comparison may differ in, in the order the labels give them."""
     criterion = params.get("criterion", "pohrt-popov")
     if criterion == "crack-closure":
-        criterion += f" (radius {params.get('criterion_radius', 16):g})"
+        low = params.get("criterion_radius", 16)
+        high = max(low, params.get("criterion_radius_max", low))  # files before 2026-11-25: a fixed window
+        criterion += f" (radius {low:g})" if high == low else f" (radius {low:g}-{high:g})"
     Nx, Ny = params.get("Nx"), params.get("Ny")
     return {"adhesion": adhesion_label(params), "criterion": criterion,
             "attach": f"attach {params['attach']}" if "attach" in params else None,

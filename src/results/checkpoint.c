@@ -10,7 +10,7 @@
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
 #include "results/resultsimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 6 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file (read from 5 on) */
+#define ADH_CHECKPOINT_VERSION 7 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back) */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -40,6 +40,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_criterion", PETSC_STRING, s->criterion_type};
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &radius));
   if (radius) shape[n++] = (Shape){"-adh_criterion_radius", PETSC_REAL, &s->criterion_radius};
+  if (radius) shape[n++] = (Shape){"-adh_criterion_radius_max", PETSC_REAL, &s->criterion_radius_max};
   shape[n++] = (Shape){"-adh_attach", PETSC_STRING, AdhAttaches[s->attach]};
   shape[n++] = (Shape){"-adh_critical_stress", PETSC_REAL, &s->sigma_fixed};
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
@@ -198,7 +199,8 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &version));
-  PetscCheck(version == ADH_CHECKPOINT_VERSION || version == 5, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version 5 or %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
+  /* an older checkpoint came from another set-update loop or criterion: its curve would not go on as it began */
+  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) {
     PetscBool same = PETSC_FALSE;

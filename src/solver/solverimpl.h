@@ -121,16 +121,19 @@ struct _n_AdhSolver {
   char            criterion_type[64];
   AdhCriterionOps crops;
   void           *crdata;
-  PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings */
+  PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings, */
+  PetscReal       criterion_radius_max; /* and up to this where the front's radius of curvature is larger */
   PetscBool       criterion_certify; /* crack-closure: its certified early stop (-adh_criterion_certify) */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
-  char     *left;             /* points that let go during the current step */
+  char     *left;             /* points that let go during the current step (they stay off: AttachLimit) */
+  PetscInt  step_largest;     /* the largest set of the current step (points) */
   PetscInt  nlocal;
   AdhAttach attach;
+  PetscBool attach_chosen; /* set by the user (else griffith with crack-closure, reach otherwise, at set-up) */
   Vec       attach_limit;      /* griffith: the gap below which each open point joins, from the last detach test */
   PetscBool attach_limit_current; /* it belongs to the current p (the detach test just before let nothing go) */
   IS        contact;

@@ -159,9 +159,10 @@ def test_compare_labels_say_what_differs(tmp_path):
     c = run(tmp_path, "c", ["-adh_indenter", "sphere", "-adh_gamma", "2e-3", "-adh_path", "0,0.02,-0.03"] + paper, fields=False)
     fig = figure(str(a), compare=[str(b), str(c)])
     names = legend(fig.axes[0])
-    assert "a: dgamma = 0.001, pohrt-popov, approach" in names
-    assert "b: dgamma = 0.001, crack-closure (radius 16), retraction" in names
-    assert "c: dgamma = 0.002, pohrt-popov, approach" in names
+    # the attach rule differs too: each criterion's default (reach with the paper's, griffith)
+    assert "a: dgamma = 0.001, pohrt-popov, attach reach, approach" in names
+    assert "b: dgamma = 0.001, crack-closure (radius 16-64), attach griffith, retraction" in names
+    assert "c: dgamma = 0.002, pohrt-popov, attach reach, approach" in names
     # what is the same (grid, boundary, control) is not repeated; the attach rule when files have it
     assert not any("N = 32" in n or "boundary" in n for n in names)
     import h5py
@@ -172,7 +173,7 @@ def test_compare_labels_say_what_differs(tmp_path):
     d = run(tmp_path, "d", JKR + paper + ["-adh_n", "24"], fields=False)
     names = legend(figure(str(a), compare=[str(b), str(d)]).axes[0])
     assert "a: pohrt-popov, attach penetration, N = 32, approach" in names
-    assert "b: crack-closure (radius 16), attach reach, N = 32, approach" in names
+    assert "b: crack-closure (radius 16-64), attach reach, N = 32, approach" in names
     assert "d: pohrt-popov, attach reach, N = 24, approach" in names
 
 

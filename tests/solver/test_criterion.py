@@ -6,7 +6,8 @@ pohrt-popov (the paper's p < -Sigma) acts on a straight edge along a grid axis a
 1.85 times larger, at 45 degrees 1.34 times, at 26.6 degrees 1.12 times, at 18.4 degrees 1.05
 times (measured, and asserted below so that a change of it shows). crack-closure (the edge's
 energy release rate by virtual crack closure, averaged along the edge) is within about 1% on all
-four, and within 2% on the JKR sphere and the punch.
+four, within 0.5% on the JKR sphere at a_c/h 25 and 50 (its window grows with the edge's radius
+of curvature), and within 2% on the punch.
 """
 import math
 import os
@@ -46,7 +47,9 @@ def test_straight_edges(N, m, n, pp_low, pp_high):
     say(f"\nwave {cc['case']} {cc['size']}: dgamma_eff/dgamma crack-closure {np.median(qc):.4f}"
         f" ({qc.min():.4f}-{qc.max():.4f}, {len(qc)} states), pohrt-popov {np.median(qp):.4f};"
         f" largest tension / Johnson's pull-off {cc['tension']:.4f} and {pp['tension']:.4f}")
-    assert len(qc) >= 20 and len(qp) >= 20
+    # crack-closure's window spans up to 64 points of a straight edge, which then lets go in fewer,
+    # longer pieces than the paper's criterion lets it: fewer states at the detachment
+    assert len(qc) >= 12 and len(qp) >= 20
     assert np.all(np.abs(qc - 1) < 0.02)
     assert abs(np.median(qc) - 1) < 0.012
     assert abs(cc["tension"] - 1) < 0.01
@@ -56,33 +59,36 @@ def test_straight_edges(N, m, n, pp_low, pp_high):
 
 def test_jkr_sphere():
     """The JKR sphere at a_c/h = 25 and 50: the work of adhesion at the detachment states and the
-    largest tension. crack-closure is closer to dgamma than pohrt-popov at both grids (default
-    radius 16: 0.6% and 1.3% low, pohrt-popov 4.4% and 2.2% high). A curved edge is a staircase
-    whose runs grow like the square root of its radius in grid spacings, and the release rate of
-    single points rises along each run; the first window whose mean runs high lets go, a little
-    early. With an averaging radius of 32 the window spans the runs and the errors shrink with
-    the grid (work of adhesion 0.5%, 0.3%; largest tension 2.4%, 0.5%)."""
+    largest tension. A curved edge is a staircase whose runs grow like the square root of its
+    radius in grid spacings, and the release rate of single points rises along each run; a window
+    of fixed radius (16) stops spanning the runs as the grid is refined, the first window whose
+    mean runs high lets go, and the error grows with the grid (measured 0.6% and 1.3% low). The
+    default window grows to the edge's radius of curvature near the detachment (up to 64): within
+    0.5% at both grids (0.3% and 0.1%), closer than the fixed window and than pohrt-popov (4.4% and
+    2.2% high)."""
     serial_only()
-    errors, tension_errors = [], []
+    errors, fixed_errors = [], []
     for ratio in (25, 50):
         cc = measure.sphere(ratio, "crack-closure")
         pp = measure.sphere(ratio, "pohrt-popov")
-        measure.OPTIONS["criterion_radius"] = 32
+        measure.OPTIONS["criterion_radius_max"] = 16
         try:
-            wide = measure.sphere(ratio, "crack-closure")
+            fixed = measure.sphere(ratio, "crack-closure")
         finally:
-            del measure.OPTIONS["criterion_radius"]
-        qc, qp, qw = np.array(cc["ratios"]), np.array(pp["ratios"]), np.array(wide["ratios"])
+            del measure.OPTIONS["criterion_radius_max"]
+        qc, qp, qf = np.array(cc["ratios"]), np.array(pp["ratios"]), np.array(fixed["ratios"])
         say(f"\nJKR sphere a_c/h = {ratio}: dgamma_eff/dgamma crack-closure {np.median(qc):.4f} ({qc.min():.4f}-{qc.max():.4f}),"
-            f" radius 32 {np.median(qw):.4f}, pohrt-popov {np.median(qp):.4f}; largest tension / F_adh {cc['tension']:.4f},"
-            f" {wide['tension']:.4f} and {pp['tension']:.4f}")
-        assert len(qc) >= 30 and len(qw) >= 30
-        assert abs(np.median(qc) - 1) < 0.015 and abs(np.median(qc) - 1) < abs(np.median(qp) - 1)
+            f" fixed radius 16 {np.median(qf):.4f}, pohrt-popov {np.median(qp):.4f}; largest tension / F_adh {cc['tension']:.4f},"
+            f" {fixed['tension']:.4f} and {pp['tension']:.4f}")
+        assert len(qc) >= 30 and len(qf) >= 30
+        # the largest tension samples the sawtooth of lattice trapping (measured 1.8% and 0.4% high)
+        assert abs(np.median(qc) - 1) < 0.005 and abs(cc["tension"] - 1) < (0.025 if ratio == 25 else 0.01)
+        assert abs(np.median(qc) - 1) < abs(np.median(qp) - 1)
         assert abs(cc["tension"] - 1) < abs(pp["tension"] - 1)
-        assert abs(np.median(qw) - 1) < abs(np.median(qp) - 1)
-        errors.append(abs(np.median(qw) - 1))
-        tension_errors.append(abs(wide["tension"] - 1))
-    assert errors[1] < errors[0] < 0.01 and tension_errors[1] < tension_errors[0]
+        errors.append(abs(np.median(qc) - 1))
+        fixed_errors.append(abs(np.median(qf) - 1))
+    # the fixed window's error grows with the grid; the default's is smaller where it is largest
+    assert fixed_errors[1] > fixed_errors[0] > 0.003 and errors[1] < fixed_errors[1]
 
 
 def test_flat_punch():
@@ -185,6 +191,8 @@ def test_crack_closure_same_curve_on_any_number_of_ranks():
 @pytest.mark.parametrize("args, says", [
     (["-adh_criterion", "griffith"], "-adh_criterion"),
     (["-adh_criterion", "crack-closure", "-adh_criterion_radius", "0.5"], "-adh_criterion_radius"),
+    (["-adh_criterion_radius_max", "8"], "must be at least -adh_criterion_radius"),
+    (["-adh_criterion_radius_max", "200"], "-adh_criterion_radius_max must be at most 128"),
     (["-adh_criterion", "pohrt-popov", "-adh_attach", "griffith"], "-adh_attach griffith"),
 ])
 def test_bad_criterion_options(tmp_path, args, says):
@@ -241,3 +249,23 @@ def test_results_file_records_the_criterion(tmp_path):
         ratio = f["curve/detach_ratio"][()]
     # the states hold (ratio <= 1) and some carry tension near their detachment
     assert np.all(ratio <= 1 + 1e-9) and ratio.max() > 0.5
+
+
+@pytest.mark.parametrize("args, attach", [
+    ([], "griffith"),                                                # the defaults
+    (["-adh_criterion", "pohrt-popov"], "reach"),                    # griffith is crack-closure's mirror
+    (["-adh_criterion", "pohrt-popov", "-adh_attach", "penetration"], "penetration"),
+    (["-adh_attach", "reach"], "reach"),
+])
+def test_the_default_attach_rule_follows_the_criterion(tmp_path, args, attach):
+    """Without -adh_attach, crack-closure attaches by griffith (its mirror) and pohrt-popov by reach;
+    the results file and -adh_view say which rule ran."""
+    serial_only()
+    out = tmp_path / "a.h5"
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "1e-3", "-adh_start", "adhesive", "-adh_path", "0,0.01",
+                        "-adh_steps", "2", "-adh_view", *args, "-adh_output", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert f"attach rule {attach}" in r.stdout
+    import h5py
+    with h5py.File(out, "r") as f:
+        assert f.attrs["attach"].decode() == attach

@@ -326,26 +326,41 @@ def test_adhesive_loading_jump_in():
     assert np.all(a > 2 * np.sqrt(R * d))
 
 
-@pytest.mark.parametrize("ratio, N, attach, worst", [(25.0, 100, "reach", 0.025), (50.0, 200, "reach", 0.025),
-                                                     (25.0, 100, "griffith", 0.03), (50.0, 200, "griffith", 0.03)])
-def test_default_loading_branch_is_jkr(ratio, N, attach, worst):
-    """The defaults (crack-closure, reach) load a JKR sphere from first touch along JKR's branch:
-    the jump-in at d = 0 to a~ = (4/3)^(2/3) = 1.211 and a(d) on the branch within 2.5% at every
-    state and 1.5% on average (measured: 1.2% and 1.4% low on average at a_c/h 25 and 50, at most
-    2.1%); -adh_attach griffith too, within 3% (1.2% and 1.0% on average, at most 2.7%);
-    penetration is 38% low, Hertz-like."""
+def loading_branch(ratio, N, **options):
+    """Load a JKR sphere from first touch (d = 0, the jump-in) to d~ = 5.07 in 12 steps with the
+    default criterion: a / a_JKR - 1 at every state."""
     ac = ratio / N
     gamma = gamma_for(ac)
     ac, dc, Fadh = jkr_scales(gamma)
-    c = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="adhesive", attach=attach,
-                      path=[0.0, (1.3 * ac) ** 2 / R], steps=12).solve_path()
+    c = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="adhesive",
+                      path=[0.0, (1.3 * ac) ** 2 / R], steps=12, **options).solve_path()
     a = radius(c["area"]) / ac
     theory = np.array([jkr_a(d / dc) for d in c["d"]])
     err = a / theory - 1
-    say(f"\nloading branch, crack-closure and {attach}, a_c/h = {ratio}: a/a_JKR - 1 from {err.min():+.4f} to {err.max():+.4f},"
-        f" mean {err.mean():+.4f}; at first touch a~ = {a[0]:.4f} (JKR {theory[0]:.4f})")
-    assert c["d"][0] == 0 and abs(err[0]) < worst
-    assert np.all(np.abs(err) < worst) and abs(err.mean()) < 0.015
+    say(f"\nloading branch, crack-closure, {options or 'defaults'}, a_c/h = {ratio}: a/a_JKR - 1 from {err.min():+.4f}"
+        f" to {err.max():+.4f}, mean {err.mean():+.4f}; at first touch a~ = {a[0]:.4f} (JKR {theory[0]:.4f})")
+    assert c["d"][0] == 0
+    return err
+
+
+def test_default_loading_branch_is_jkr():
+    """The defaults (crack-closure, griffith) load a JKR sphere from first touch along JKR's branch:
+    the jump-in at d = 0 to a~ = (4/3)^(2/3) = 1.211 and a(d) on the branch, converging as the grid
+    is refined (measured: 1.5% and 0.6% low on average at a_c/h 25 and 50, at most 2.8% and 1.4%,
+    the jump-in 2.8% and 0.5% low: the edge lags by up to an element)."""
+    coarse, fine = loading_branch(25.0, 100), loading_branch(50.0, 200)
+    assert np.all(np.abs(coarse) < 0.03) and abs(coarse.mean()) < 0.02
+    assert np.all(np.abs(fine) < 0.02) and abs(fine.mean()) < 0.01
+    assert abs(fine.mean()) < abs(coarse.mean()) and abs(fine[0]) < abs(coarse[0])
+
+
+@pytest.mark.parametrize("ratio, N", [(25.0, 100), (50.0, 200)])
+def test_reach_loading_branch_is_jkr(ratio, N):
+    """-adh_attach reach too (measured 0.5% and 0.8% low on average at a_c/h 25 and 50, at most
+    1.3%; its bias shows on edges along a grid axis: Johnson's wave, tests/solver/test_wavy_loading.py);
+    penetration is 38% low, Hertz-like."""
+    err = loading_branch(ratio, N, attach="reach")
+    assert np.all(np.abs(err) < 0.025) and abs(err.mean()) < 0.015
 
 
 @pytest.mark.parametrize("attach", ["penetration", "reach"])

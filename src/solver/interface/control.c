@@ -74,6 +74,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
   PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
   PetscCall(PetscArrayzero(s->left, s->nlocal));
+  s->step_largest = s->npoints;
   s->step_outer = 0;
   s->step_ksp   = 0;
   if (s->pulled_off) {

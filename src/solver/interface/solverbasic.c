@@ -31,6 +31,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
   s->criterion_radius = 16.0;
+  s->criterion_radius_max = 64.0;
   s->fields_stride    = 1;
   s->memory_check     = PETSC_TRUE;
   s->checkpoint_every = 1;
@@ -43,7 +44,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->grid->fftw_timelimit = 0.01; /* free boundary: many windows to plan, few whole-grid multiplies */
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
   PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONCRACKCLOSURE)); /* within 2% in every edge direction; the paper's rule is one option away */
-  s->attach = ADH_ATTACH_REACH; /* the JKR jump-in and loading branch (penetration stays Hertz-like) */
+  s->attach = ADH_ATTACH_GRIFFITH; /* crack-closure's mirror: JKR's and Johnson's loading branches (reach with pohrt-popov, at set-up; penetration stays Hertz-like) */
   s->predictor_rtol   = 1e-8;
   s->predictor_max_it = 10000;
   s->predictor_fourier = PETSC_TRUE;

@@ -58,6 +58,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
   PetscCall(PetscOptionsBool("-adh_criterion_certify", "crack-closure: the certified early stop of intermediate solves too (its openings bounded through K's row norms): the same sets with about 30% fewer KSP iterations, but its checks cost more time than they save on the grids measured", "AdhSolver", s->criterion_certify, &s->criterion_certify, NULL));
   PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
+  PetscCall(PetscOptionsReal("-adh_criterion_radius_max", "crack-closure: near the detachment, average within the edge's radius of curvature where that is larger, up to this many grid spacings (so that curved edges converge with the grid; equal to -adh_criterion_radius: a fixed window)", "AdhSolver", s->criterion_radius_max, &s->criterion_radius_max, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");
@@ -76,7 +77,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   }
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
-  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: reach (its gap is below Sigma K_00, the gap it closes under its own critical tension: the JKR jump-in; the default), griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, NULL));
+  PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror; the default with crack-closure), reach (its gap is below Sigma K_00, the gap it closes under its own critical tension; the default with pohrt-popov) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, &set));
+  if (set) s->attach_chosen = PETSC_TRUE;
   PetscCall(AdhPredictorGetList_Private(&predictors));
   PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
@@ -107,6 +109,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
   PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
+  PetscCheck(s->criterion_radius_max <= 128, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max must be at most 128 grid spacings, got %g", (double)s->criterion_radius_max);
+  PetscCheck(s->criterion_radius_max >= s->criterion_radius, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max (%g) must be at least -adh_criterion_radius (%g)", (double)s->criterion_radius_max, (double)s->criterion_radius);
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);

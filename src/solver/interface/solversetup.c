@@ -142,6 +142,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     {
       PetscBool cc;
       PetscCall(PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
+      if (!cc && !s->attach_chosen) s->attach = ADH_ATTACH_REACH; /* griffith's counterpart for the paper's criterion */
       PetscCheck(cc || s->attach != ADH_ATTACH_GRIFFITH, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach griffith is the mirror of -adh_criterion crack-closure's detachment test; with -adh_criterion %s use -adh_attach reach or penetration", s->criterion_type);
     }
     if (!s->predictor_chosen && s->boundary == ADH_BOUNDARY_FREE) {

@@ -172,6 +172,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
     const PetscReal mid = 0.5 * (carried + failed);
     /* each trial is a step of its own from the saved state */
     PetscCall(PetscArrayzero(s->left, s->nlocal));
+    s->step_largest = s->npoints;
     PetscCall(Equilibrate(s, mid, PETSC_FALSE));
     if (s->npoints) {
       carried = mid;

@@ -222,9 +222,10 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
 
   PetscFunctionBegin;
   /* the window's columns and rows in the fetched rows, once per point (Neighbour() for every
-     offset of the walk, without its divisions); NONE: off the grid or the rows (a fetched row's
-     index may be negative on a periodic cell) */
-  for (PetscInt d = -w; d <= w; d++) {
+     offset of the walk, without its divisions), as far as this walk reaches (|offset| < radius);
+     NONE: off the grid or the rows (a fetched row's index may be negative on a periodic cell) */
+  const PetscInt reach = PetscMin(w, (PetscInt)PetscCeilReal(radius));
+  for (PetscInt d = -reach; d <= reach; d++) {
     PetscInt a, b;
     col[d] = Neighbour(g, wrap, gys, gym, i, j, d, 0, &a, &b) ? a : NONE;
     row[d] = Neighbour(g, wrap, gys, gym, i, j, 0, d, &a, &b) ? b : NONE;

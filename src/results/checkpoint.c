@@ -45,6 +45,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_critical_stress", PETSC_REAL, &s->sigma_fixed};
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
   shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
+  shape[n++] = (Shape){"-adh_cascade_rtol", PETSC_REAL, &s->cascade_rtol};
   /* force control's pull-off is found to this tolerance; the predictor's guess is certified, but
      where a state is not unique (rounding at a pressure of zero) it picks one: it runs only
      without adhesion */

@@ -159,6 +159,8 @@ struct _n_AdhSolver {
   const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
   PetscReal bnorm;
   PetscBool certify, certify_solve, certified_stop;
+  PetscReal cascade_rtol;     /* -adh_cascade_rtol: the solves between set updates stop at this relative residual (0: at the KSP's) */
+  PetscBool solve_loose;      /* the current solve is one of those */
   PetscReal detach_perr;      /* the error bound below which the next detach decision is worth its cost */
   PetscBool detach_none;      /* decided: the exact solution lets no point go */
   PetscBool certify_attach, certified_attach; /* the solve may stop, and did, once the points that join are certain */

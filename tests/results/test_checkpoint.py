@@ -148,8 +148,13 @@ def test_damaged_checkpoints_are_refused(tmp_path, checkpoint):
     results = tmp_path / "results.h5"
     assert subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "1", "-adh_output", str(results)],
                           capture_output=True, env=ENV).returncode == 0
+    # a checkpoint of the version before (another set-update loop, a fixed averaging window)
+    older = tmp_path / "older.h5"
+    older.write_bytes(data)
+    with h5py.File(older, "r+") as f:
+        f.attrs["version"] = np.array(6, dtype=f.attrs["version"].dtype)
     for bad, says in ((cut, "not a readable HDF5 file"), (results, "not an adhbem checkpoint"),
-                      (tmp_path / "none.h5", "cannot read")):
+                      (tmp_path / "none.h5", "cannot read"), (older, "it has version 6")):
         r = subprocess.run([EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_restart", str(bad)],
                            capture_output=True, text=True, env=ENV)
         assert r.returncode != 0 and says in r.stderr and "-adh_restart" in r.stderr, r.stderr
@@ -232,7 +237,7 @@ def test_restart_that_changes_the_answer_is_refused(tmp_path, changed, option):
         assert float(f.attrs["criterion_radius"]) == 16 and float(f.attrs["criterion_radius_max"]) == 64
     r = subprocess.run([*run, *changed, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
                        capture_output=True, text=True, env=ENV)
-    assert r.returncode != 0 and option in r.stderr and "-adh_restart" in r.stderr, r.stderr[-2000:]
+    assert r.returncode != 0 and f"has {option} " in r.stderr and "-adh_restart" in r.stderr, r.stderr[-2000:]
     assert not (tmp_path / "x.h5").exists()
     r = subprocess.run([*run, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
                        capture_output=True, text=True, env=ENV)

@@ -159,9 +159,7 @@ def test_reloading_after_pull_off():
     """Path [F0, -1.5 F_adh, F0] (N = 48, a_c/h = 15): the unloading leg ends at pull-off; on the
     loading leg the targets F <= 0 find the bodies apart (no contact, no force), then the first
     positive target starts again from first touch, and d and the contact grow to the final force
-    F0. With the default penetration attach the open, crack-like edge does not advance, so the
-    reloading is close to Hertz: at F0 the reloaded contact is a little larger than the
-    adhesion-free start's (the edge carries tension) and far below the JKR radius (printed)."""
+    F0 (the reloaded contact's radius against the adhesion-free start's and JKR's is printed)."""
     N, ratio, steps = 48, 15.0, 12
     ac = ratio / N
     gamma = gamma_for(ac)

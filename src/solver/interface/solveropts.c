@@ -57,7 +57,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
   PetscCall(PetscOptionsBool("-adh_criterion_certify", "crack-closure: the certified early stop of intermediate solves too (its openings bounded through K's row norms): the same sets with about 30% fewer KSP iterations, but its checks cost more time than they save on the grids measured", "AdhSolver", s->criterion_certify, &s->criterion_certify, NULL));
-  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
+  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there), or more near the detachment (-adh_criterion_radius_max)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
   PetscCall(PetscOptionsReal("-adh_criterion_radius_max", "crack-closure: near the detachment, average within the edge's radius of curvature where that is larger, up to this many grid spacings (so that curved edges converge with the grid; equal to -adh_criterion_radius: a fixed window)", "AdhSolver", s->criterion_radius_max, &s->criterion_radius_max, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
@@ -100,6 +100,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsReal("-adh_cascade_rtol", "Solves between set updates of a step stop at this relative residual, and the set is updated on their pressures (0: every solve to -adh_ksp_rtol); a set that stands on one is solved to -adh_ksp_rtol and tested again. Fewer KSP iterations; the sets along the way may differ from the exact cascade's", "AdhSolver", s->cascade_rtol, &s->cascade_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
@@ -111,6 +112,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
   PetscCheck(s->criterion_radius_max <= 128, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max must be at most 128 grid spacings, got %g", (double)s->criterion_radius_max);
   PetscCheck(s->criterion_radius_max >= s->criterion_radius, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max (%g) must be at least -adh_criterion_radius (%g)", (double)s->criterion_radius_max, (double)s->criterion_radius);
+  PetscCheck(s->cascade_rtol >= 0 && s->cascade_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_rtol must lie in [0, 1), got %g", (double)s->cascade_rtol);
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);

@@ -266,7 +266,7 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
     *reason = KSP_DIVERGED_NANORINF;
     PetscFunctionReturn(0);
   }
-  if (rnorm <= PetscMax(rtol * s->bnorm, atol)) {
+  if (rnorm <= PetscMax(rtol * s->bnorm, atol) || (s->solve_loose && rnorm <= s->cascade_rtol * s->bnorm)) {
     *reason = KSP_CONVERGED_RTOL;
     PetscFunctionReturn(0);
   }

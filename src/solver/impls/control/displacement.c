@@ -1,6 +1,9 @@
 /* Load control displacement (-adh_control displacement, the default): the path holds
    indentations d; a step is the Pohrt-Popov loop at fixed d: solve on the set, let go what the
-   criterion says, let join what the attach rule says, until the set stands. */
+   criterion says, let join what the attach rule says, until the set stands. With
+   -adh_cascade_rtol the solves after a set update stop at that relative residual, and the set is
+   updated on their pressures; once a set stands on one, it is solved to the full tolerance and
+   tested again, so every recorded state is tested on an exact solve. */
 #include "solver/solverimpl.h"
 
 /* Displacement control: the equilibrium set at indentation d, from the current set. */
@@ -8,6 +11,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
 {
   PetscInt        outer, removed, added;
   const PetscBool had_contact = s->npoints > 0;
+  PetscBool       loose; /* -adh_cascade_rtol: the next solve may stop early */
 
   PetscFunctionBegin;
   PetscCall(AdhSolverCheckBelowFullContact_Private(s, d));
@@ -15,19 +19,30 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
   s->joined_step = 0;
   /* without adhesion the state at d is unique: a predictor may guess its set */
   if (s->predict && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->predict(s, PETSC_FALSE, d));
+  loose = (PetscBool)(s->cascade_rtol > 0);
   for (outer = 1;; outer++) {
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set at d = %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)d, s->max_outer);
     AdhSolverCheckStop_Private(s);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
+    s->solve_loose = loose;
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
+    s->solve_loose = PETSC_FALSE;
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(AdhSolverDetach_Private(s, &removed));
+    if (!removed && loose) { /* the set stands on a loose solve: solve to the full tolerance and test again */
+      loose = PETSC_FALSE;
+      PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
+      continue;
+    }
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
     s->joined_step += added;
     PetscCheck(!s->certified_attach || (!removed && added), s->comm, PETSC_ERR_PLIB, "Certified early stop for an attach test that changed nothing");
-    if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
+    if (removed || added) {
+      PetscCall(AdhSolverRebuildSet_Private(s));
+      loose = (PetscBool)(s->cascade_rtol > 0);
+    }
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
     if (!removed && !added) break;

@@ -92,6 +92,7 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
   /* d = e - c0 mean(p), and mean(p) = F / (cell area) is fixed by the target */
   const PetscReal dc = s->Kmean ? s->c0 * F / (A * s->grid->Nx * s->grid->Ny) : 0.0;
   PetscInt        outer, removed, added;
+  PetscBool       loose = (PetscBool)(s->cascade_rtol > 0); /* -adh_cascade_rtol: the next solves may stop early */
 
   PetscFunctionBegin;
   s->e = s->d + dc;
@@ -102,6 +103,7 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
     PetscCheck(outer <= s->max_outer, s->comm, PETSC_ERR_NOT_CONVERGED, "No stable contact set for the force %g after %" PetscInt_FMT " set updates (-adh_max_outer)", (double)F, s->max_outer);
     AdhSolverCheckStop_Private(s);
     PetscCall(AdhSolverMonitorProgress_Private(s, outer));
+    s->solve_loose = loose;
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, s->e, s->h, PETSC_FALSE));
     PetscCall(VecSum(s->p, &Fp));
     if (unique) {
@@ -115,6 +117,7 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
       PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
       PetscCall(KSPSetTolerances(s->ksp, rtol, atol, dtol, maxits));
     } else PetscCall(AdhSolverSolveOnSet_Private(s, s->xunit, 1.0, NULL, PETSC_FALSE));
+    s->solve_loose = PETSC_FALSE;
     PetscCall(VecSum(s->xunit, &Fx));
     PetscCheck(PetscRealPart(Fx) > 0, s->comm, PETSC_ERR_PLIB, "The unit-indentation response of the contact set carries no force");
     de = (F / A - PetscRealPart(Fp)) / PetscRealPart(Fx);
@@ -123,6 +126,12 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
     s->d = s->e - dc;
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(AdhSolverDetach_Private(s, &removed));
+    if (!removed && loose) { /* the set stands on loose solves: solve to the full tolerance and test again */
+      loose = PETSC_FALSE;
+      PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
+      s->step_outer++;
+      continue;
+    }
     added = 0;
     if (!removed) {
       /* with the set fixed, g = h - d + K p closes at (dd/de) - (K x)_k per unit e, and
@@ -132,7 +141,10 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
       PetscCall(VecShift(s->gap_rate, 1.0 - (s->Kmean ? s->c0 * PetscRealPart(Fx) / (s->grid->Nx * s->grid->Ny) : 0.0)));
       PetscCall(AdhSolverAttach_Private(s, s->gap_rate, &added));
     }
-    if (removed || added) PetscCall(AdhSolverRebuildSet_Private(s));
+    if (removed || added) {
+      PetscCall(AdhSolverRebuildSet_Private(s));
+      loose = (PetscBool)(s->cascade_rtol > 0);
+    }
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     s->step_outer++;
     if (!removed && !added) break;

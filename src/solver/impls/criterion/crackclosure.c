@@ -204,6 +204,60 @@ static PetscErrorCode FrontLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, 
   PetscFunctionReturn(0);
 }
 
+/* The front's curvature (1/grid spacings, >= 0) from a window's moments M[a][b] = sum wt di^a dj^b
+   about a front point: the tangent is the major axis of the centred second moments, and
+   y = c0 + c1 s + kappa s^2 / 2 is fitted by weighted least squares (s along the tangent, y along
+   the normal; the offset c0 takes up where the point sits on its staircase). PETSC_MAX_REAL where
+   the window does not show an arc through the point: too few points, not elongated (a small
+   closed patch), or lying to one side of it (the front ends, or breaks). */
+static PetscErrorCode FitCurvature(PetscReal M[5][5], PetscReal *curvature)
+{
+  static const PetscReal binom[5][5] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}};
+  const PetscReal        w = M[0][0];
+  PetscReal              cx, cy, cxx, cxy, cyy, half, root, major, minor, t[2], n[2], len, S[5], Y[3], det;
+
+  PetscFunctionBegin;
+  *curvature = PETSC_MAX_REAL;
+  if (w < 6.0) PetscFunctionReturn(0);
+  cx    = M[1][0] / w;
+  cy    = M[0][1] / w;
+  cxx   = M[2][0] / w - cx * cx;
+  cxy   = M[1][1] / w - cx * cy;
+  cyy   = M[0][2] / w - cy * cy;
+  half  = 0.5 * (cxx - cyy);
+  root  = PetscSqrtReal(half * half + cxy * cxy);
+  major = 0.5 * (cxx + cyy) + root;
+  minor = 0.5 * (cxx + cyy) - root;
+  if (!(major > 4.0 * minor)) PetscFunctionReturn(0);
+  t[0] = half + root;
+  t[1] = cxy;
+  if (t[0] <= 0 && cxy == 0) { /* the major axis along y */
+    t[0] = 0;
+    t[1] = 1;
+  }
+  len  = PetscSqrtReal(t[0] * t[0] + t[1] * t[1]);
+  t[0] /= len;
+  t[1] /= len;
+  n[0] = -t[1];
+  n[1] = t[0];
+  if (PetscAbsReal(cx * t[0] + cy * t[1]) > 0.5 * PetscSqrtReal(major)) PetscFunctionReturn(0);
+  /* S_k = sum wt s^k, Y_k = sum wt s^k y, from the moments: s = t . (di, dj), y = n . (di, dj) */
+  for (PetscInt k = 0; k <= 4; k++) {
+    S[k] = 0;
+    if (k <= 2) Y[k] = 0;
+    for (PetscInt a = 0; a <= k; a++) {
+      const PetscReal c = binom[k][a] * PetscPowRealInt(t[0], a) * PetscPowRealInt(t[1], k - a);
+      S[k] += c * M[a][k - a];
+      if (k <= 2) Y[k] += c * (n[0] * M[a + 1][k - a] + n[1] * M[a][k - a + 1]);
+    }
+  }
+  /* the normal equations of (c0, c1, kappa/2), by Cramer's rule for the last */
+  det = S[0] * (S[2] * S[4] - S[3] * S[3]) - S[1] * (S[1] * S[4] - S[3] * S[2]) + S[2] * (S[1] * S[3] - S[2] * S[2]);
+  if (!(PetscAbsReal(det) > 0)) PetscFunctionReturn(0);
+  *curvature = 2.0 * PetscAbsReal(S[0] * (S[2] * Y[2] - Y[1] * S[3]) - S[1] * (S[1] * Y[2] - Y[1] * S[2]) + Y[0] * (S[1] * S[3] - S[2] * S[2])) / PetscAbsReal(det);
+  PetscFunctionReturn(0);
+}
+
 /* The release rate averaged along the front around front point (i, j): the front points reached
    from it in steps of at most two grid spacings (a front drawn on the grid is 8-connected where
    the edge is smooth; two also bridge a missing point) without leaving the disk of the radius,
@@ -216,7 +270,7 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
   const AdhGrid   g = s->grid;
   const PetscInt  w = cc->width, side = 2 * w + 1;
   const PetscReal rad2 = radius * radius;
-  PetscReal       m1[2] = {0, 0}, m2[3] = {0, 0, 0}; /* the window's first and second moments about (i, j) */
+  PetscReal       M[5][5] = {{0}}; /* the window's moments sum wt di^a dj^b about (i, j), a + b <= 4 */
   const PetscInt  NONE = PETSC_MIN_INT;
   PetscInt        head = 0, tail = 0, *col = cc->col + w, *row = cc->row + w;
 
@@ -247,11 +301,11 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
     *sum += wt * PetscRealPart(Gl[row[dj]][col[di]]);
     *weights += wt;
     if (curvature) {
-      m1[0] += wt * di;
-      m1[1] += wt * dj;
-      m2[0] += wt * di * di;
-      m2[1] += wt * di * dj;
-      m2[2] += wt * dj * dj;
+      PetscReal xa = wt;
+      for (PetscInt a = 0; a <= 4; a++, xa *= di) {
+        PetscReal xy = xa;
+        for (PetscInt b = 0; a + b <= 4; b++, xy *= dj) M[a][b] += xy;
+      }
     }
     /* its front neighbours, in the order of the offsets (ej, then ei, ascending) */
     for (PetscInt bits = cc->links[(row[dj] - cc->gys) * s->grid->Nx + col[di]]; bits; bits &= bits - 1) {
@@ -261,22 +315,17 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
       cc->queue[tail++] = no;
     }
   }
-  if (curvature) {
-    /* the front through (i, j) as y = kappa s^2 / 2 along its tangent, the major axis of the second
-       moments: the window's centroid lies kappa <s^2> / 2 off the tangent */
-    const PetscReal half = 0.5 * (m2[0] - m2[2]), root = PetscSqrtReal(half * half + m2[1] * m2[1]);
-    const PetscReal major = 0.5 * (m2[0] + m2[2]) + root;
-    PetscReal       t[2] = {root + half, m2[1]}, len;
-    if (root + half <= 0 && m2[1] == 0) { t[0] = 0; t[1] = 1; } /* the major axis along y */
-    len = PetscSqrtReal(t[0] * t[0] + t[1] * t[1]);
-    *curvature = major > 0 && len > 0 ? 2.0 * PetscAbsReal(-m1[0] * t[1] + m1[1] * t[0]) / len / major : PETSC_MAX_REAL;
-  }
+  if (curvature) PetscCall(FitCurvature(M, curvature));
   PetscFunctionReturn(0);
 }
 
+/* A point's window grows only where its mean over the radius lies within this band of dgamma:
+   near its decision (a mean far from dgamma decides the same with any window). */
+#define ADH_WINDOW_BAND_LOW  0.8
+#define ADH_WINDOW_BAND_HIGH 1.25
+
 /* The windowed mean of G around front point (i, j) (sum over weights): within the radius, and,
-   where that mean lies within [lo, hi] (near the point's decision: a mean far from dgamma does
-   not change with the window), within the front's radius of curvature there if that is larger,
+   where that mean lies within [lo, hi], within the front's radius of curvature there if that is larger,
    up to radius_max. A straight front (no curvature) takes radius_max. margin: where the window
    depends on the mean over the radius, how far that mean lies from the band's nearer end (so a
    certified decision knows whether the exact solution takes the same window), else
@@ -368,7 +417,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
       PetscReal       sum, n, gap, margin;
       la[k] = Sigma * K00; /* reach */
       if (s->in_set[k] || IsNaN(PetscRealPart(Gl[j][i]))) continue;
-      PetscCall(WindowMean(s, cc, wrap, Gl, i, j, -PETSC_MAX_REAL, 1.25 * dgamma, &sum, &n, &margin));
+      PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
       gap   = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
       la[k] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
     }
@@ -381,7 +430,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   PetscFunctionReturn(0);
 }
 
-/* The release rate of every front point (pass 1), averaged over the front points within the radius
+/* The release rate of every front point (pass 1), averaged over the front points within its window
    (pass 2), against dgamma; under detach, removal where either rule says so. The gap of the
    current p is left in s->g.
    With decision (perr > 0), nothing is removed: the decision of the exact solution p*, within perr
@@ -474,7 +523,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   PetscCall(FetchRows(cc, cc->G, cc->Gl));
   if (decision) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &E, 1, MPIU_REAL, MPIU_MAX, s->comm));
 
-  /* pass 2: the mean release rate of the front points within the radius, against dgamma */
+  /* pass 2: the mean release rate of the front points within each point's window, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
   PetscCall(GetRows(cc, cc->Gl, cc->Grow, &Gl));
   PetscCall(FrontLinks(s, cc, wrap, Gl));
@@ -487,7 +536,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       PetscBool       lets_go;
       if (!s->in_set[k]) continue;
       /* the release-rate rule applies to front points in tension, with adhesion */
-      if (p < perr && Sigma > 0 && !IsNaN(PetscRealPart(Gl[j][i]))) PetscCall(WindowMean(s, cc, wrap, Gl, i, j, 0.8 * dgamma, PETSC_MAX_REAL, &sum, &n, &margin));
+      if (p < perr && Sigma > 0 && !IsNaN(PetscRealPart(Gl[j][i]))) PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
       if (decision) {
         /* each rule's decision for p*: made (true or false), or in doubt with the factor by which
            the bounds must shrink to make it */

@@ -1,0 +1,85 @@
+"""-adh_cascade_rtol: the solves between set updates of a step stop at a loose relative residual,
+and the set is updated on their pressures; a set that stands on one is solved to the full
+tolerance and tested again. The sets along the way may differ from the exact cascade's; what
+counts is the error against theory and the cost (docs/performance.md, the work-precision table)."""
+import math
+
+import numpy as np
+import pytest
+
+import adhbem
+from adhbem import PETSc
+from common import _max, _min, gamma_for, jkr_scales, radius, say
+
+R = E = 1.0
+
+
+def jkr_unloading(N, ratio, **options):
+    """The JKR sphere unloaded from a Hertz start at 1.3 a_c to d~ = -4 (60 steps): the largest
+    tension over F_adh, the RMS of F~ - JKR over the stable branch after detachment started, and
+    the KSP iterations."""
+    from test_validation import D_JUMP, jkr_force
+    ac = ratio / N
+    gamma = gamma_for(ac)
+    ac, dc, Fadh = jkr_scales(gamma)
+    c = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz",
+                      path=[(1.3 * ac) ** 2 / R, -4 * dc], steps=60, **options).solve_path()
+    dn, Fn, n = c["d"] / dc, c["force"] / Fadh, c["contact_points"]
+    m = (n > 0) & (n < n[0]) & (dn >= D_JUMP)
+    return -Fn.min(), math.sqrt(np.mean((Fn[m] - jkr_force(dn[m])) ** 2)), int(c["ksp_iterations"].sum())
+
+
+def test_loose_cascade_on_the_jkr_sphere():
+    """a_c/h = 25: the largest tension and the curve as close to JKR as the exact cascade's (within
+    1.25 times its error and 0.2% of F_adh), with fewer KSP iterations."""
+    exact = jkr_unloading(80, 25.0)
+    loose = jkr_unloading(80, 25.0, cascade_rtol=1e-3)
+    say(f"\nJKR sphere a_c/h 25, exact cascade: largest tension {exact[0]:.4f} F_adh, RMS {exact[1]:.4f}, KSP {exact[2]};"
+        f" -adh_cascade_rtol 1e-3: {loose[0]:.4f}, RMS {loose[1]:.4f}, KSP {loose[2]}")
+    assert abs(loose[0] - 1) <= 1.25 * abs(exact[0] - 1) + 0.002
+    assert loose[1] <= 1.25 * exact[1] + 0.002
+    assert loose[2] < exact[2]
+
+
+def test_loose_cascade_under_force_control():
+    """The JKR sphere's pull-off force under force control (bisected to 1e-3): as the exact
+    cascade's within 0.5%."""
+    ac = 25.0 / 80
+    gamma = gamma_for(ac)
+    ac, dc, Fadh = jkr_scales(gamma)
+    forces = []
+    for rtol in (0.0, 1e-3):
+        s = adhbem.Solver(n=80, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz", control="force",
+                          path=[0.5 * Fadh, -2 * Fadh], steps=20, cascade_rtol=rtol)
+        s.solve_path()
+        forces.append(s.pull_off_force / Fadh)
+    say(f"\nforce control, pull-off / F_adh: exact cascade {forces[0]:.4f}, loose {forces[1]:.4f}")
+    assert abs(forces[1] / forces[0] - 1) < 0.005
+
+
+@pytest.mark.mpi
+def test_loose_cascade_on_any_number_of_ranks():
+    """An adhesive rough cell, approach and retraction: COMM_WORLD against COMM_SELF, the same
+    contact counts and KSP iterations, forces to 1e-10; every state holds (detach_ratio <= 1)."""
+    opts = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
+                hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8, cascade_rtol=1e-3)
+    world = adhbem.Solver(**opts).solve_path()
+    alone = adhbem.Solver(comm=PETSc.COMM_SELF, **opts).solve_path()
+    mpi = PETSc.COMM_WORLD.tompi4py()
+    same = mpi.allreduce(int(np.array_equal(world["contact_points"], alone["contact_points"])
+                             and np.array_equal(world["ksp_iterations"], alone["ksp_iterations"])), op=_min())
+    rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
+    assert same == 1 and rel < 1e-10
+    assert np.all(world["detach_ratio"] <= 1 + 1e-9) and world["contact_points"].max() > 0
+
+
+@pytest.mark.parametrize("value", ["-0.1", "1"])
+def test_bad_cascade_rtol_is_refused(tmp_path, value):
+    import subprocess
+    from adhbem_build import EXE
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "1e-3", "-adh_path", "0.01,0", "-adh_cascade_rtol", value,
+                        "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
+    assert r.returncode != 0 and "-adh_cascade_rtol must lie in [0, 1)" in r.stderr + r.stdout
+    assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())

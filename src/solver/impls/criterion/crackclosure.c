@@ -25,7 +25,7 @@
    multiply per test (the attach test after a test that let nothing go reuses its gap); the
    certified early stop of intermediate solves applies, with the openings' error bounded through
    K's row norms (Decide_CrackClosure). Measured (./run bench criterion, docs/validation.md): the
-   work of adhesion it acts with is within 1.2% of dgamma on straight edges in the six directions
+   work of adhesion it acts with is within 1.4% of dgamma on straight edges in the six directions
    measured (0 to 45 degrees), within 0.2% on the JKR sphere at a_c/h 25 to 100, converging on the
    cone and the punch; pohrt-popov: 1.02 to 1.88 on the straight edges, 0-6% high on the curved
    ones. */

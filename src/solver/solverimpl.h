@@ -233,6 +233,15 @@ PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscR
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 /* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control
    response xa, when given) become zero. */
+/* A new step, or a trial of one: no point has let go in it yet, and its largest set is the
+   current one (AttachLimit). */
+static inline PetscErrorCode AdhSolverBeginSetUpdates_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(s->left, s->nlocal));
+  s->step_largest = s->npoints;
+  PetscFunctionReturn(0);
+}
 static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscScalar *pa, PetscScalar *xa)
 {
   s->in_set[k] = 0;

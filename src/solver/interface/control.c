@@ -73,14 +73,13 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
   PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
-  PetscCall(PetscArrayzero(s->left, s->nlocal));
   s->step_outer = 0;
   s->step_ksp   = 0;
   if (s->pulled_off) {
     /* The last step ended in pull-off: the bodies are apart now. */
     PetscCall(AdhSolverClearContact_Private(s));
   }
-  s->step_largest = s->npoints; /* after a pull-off, of the empty set */
+  PetscCall(AdhSolverBeginSetUpdates_Private(s)); /* after a pull-off, of the empty set */
   ierr = s->cops.step(s, target);
   if (ierr == PETSC_ERR_SIG && s->stoppable && s->stop_signal) { /* stopped by a signal: the step is abandoned */
     PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));

@@ -183,8 +183,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   for (PetscInt k = 0; k < 60 && PetscAbsReal(failed - carried) > tol; k++) {
     const PetscReal mid = 0.5 * (carried + failed);
     /* each trial is a step of its own from the saved state */
-    PetscCall(PetscArrayzero(s->left, s->nlocal));
-    s->step_largest = s->npoints;
+    PetscCall(AdhSolverBeginSetUpdates_Private(s));
     PetscCall(Equilibrate(s, mid, PETSC_FALSE));
     if (s->npoints) {
       carried = mid;

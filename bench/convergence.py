@@ -68,10 +68,15 @@ the table says so.
 
     ./run bench convergence [--config unresolved|moderate|resolved|all] [--quick] [--n N1,N2,N3] [--np P]
         [--steps K] [--legs 3|2] [--gamma G] [--criteria pohrt-popov,crack-closure] [--seed S] [--depth F]
-        [--json FILE] [--keep DIR] [-- OPTIONS]
+        [--perturb K [--perturb-size EPS]] [--json FILE] [--keep DIR] [-- OPTIONS]
 
 --gamma overrides the configurations' dgamma (units of the coarsest spacing, E* = 1); --keep DIR
 keeps each run's results file (CONFIG_CRITERION_N.h5 and .csv); further adhbem options go after --.
+--perturb K runs every case K more times on heights perturbed by --perturb-size (default 1e-6) of
+their rms, independent Gaussian noise per sample, and reports each quantity's mean and standard
+deviation over the K + 1 runs: a cascade's avalanches can tip either way on a perturbation far
+below any physical scale, and this spread is how much of the answer the data determine (the
+yardstick for a faster route whose contact sets differ from the exact cascade's).
 """
 import argparse
 import importlib.util
@@ -355,6 +360,23 @@ def report_config(name, info, results, sizes, criteria):
                   f" | {k['set_updates']} | {k['ksp']} | {k['fft_pairs']} | {r['cpu']:.1f} | {r['wall']:.1f} |")
 
 
+def report_spread(name, results, sizes, criteria, k, eps):
+    """How far the answer moves when the heights move by eps of their rms (--perturb)."""
+    print(f"\n### {name}, sensitivity: the run and {k} more on heights perturbed by {eps:g} of their rms"
+          " (independent Gaussian noise per sample): mean and standard deviation\n")
+    head = "| criterion | quantity | " + " | ".join(f"N = {n}" for n in sizes) + " |"
+    print(head)
+    print("|" + " --- |" * (head.count("|") - 1))
+    for crit in criteria:
+        for key, label in QUANTITIES:
+            cells = []
+            for n in sizes:
+                r = results[crit][n]
+                m, sd = r["mean"][key], r["spread"][key]
+                cells.append(f"{fmt(m)} +- {sd:.2g} ({100 * sd / abs(m):.2g}%)" if m else "n/a")
+            print(f"| {crit} | {label} | " + " | ".join(cells) + " |")
+
+
 def study(name, a, sizes, criteria):
     s, gamma, what = configuration(name, sizes[0], hurst=a.hurst, rms_slope=a.slope, seed=a.seed, gamma=a.gamma)
     if sizes[0] < s.min_grid():
@@ -389,9 +411,24 @@ def study(name, a, sizes, criteria):
                                     pull_off_force_attr=float(attrs.get("pull_off_force", float("nan"))))
             print(f"[{name} {crit} N = {n}: {k['states']} states, {k['ksp']} KSP iterations, CPU {cpu:.1f} s,"
                   f" wall {wall:.1f} s]", file=sys.stderr, flush=True)
+            # the same run on heights perturbed by a relative amount far below any physical scale:
+            # how much of the answer the data determine (a cascade's avalanches can tip either way)
+            samples = [q]
+            for m in range(a.perturb):
+                noise = np.random.default_rng([a.seed, n, m]).standard_normal(Z[n].shape)
+                hm = zmax - Z[n] + a.perturb_size * float(Z[n].std()) * noise
+                cm, _, cpum, wallm = run(s, n, hm, d1, gamma, crit, a.steps, a.np, a.legs, a.extra, None, name)
+                samples.append(quantities(cm, d1, s.L)[0])
+                print(f"[{name} {crit} N = {n}, perturbed {m + 1}/{a.perturb}: CPU {cpum:.1f} s]", file=sys.stderr, flush=True)
+            if a.perturb:
+                results[crit][n]["perturbed"] = samples[1:]
+                results[crit][n]["spread"] = {key: float(np.std([v[key] for v in samples], ddof=1)) for key, _ in QUANTITIES}
+                results[crit][n]["mean"] = {key: float(np.mean([v[key] for v in samples])) for key, _ in QUANTITIES}
         info["richardson"][crit] = {key: richardson([results[crit][n]["quantities"][key] for n in sizes])
                                     for key, _ in QUANTITIES}
     report_config(name, info, results, sizes, criteria)
+    if a.perturb:
+        report_spread(name, results, sizes, criteria, a.perturb, a.perturb_size)
     sys.stdout.flush()
     return dict(configuration=name, description=what, L=s.L, rolloff=s.rolloff, cutoff=s.cutoff, hurst=s.hurst,
                 rms_slope=math.sqrt(s.m2), rms_height=s.rms_height, modes=s.modes, seed=s.seed, gamma=gamma,
@@ -420,6 +457,9 @@ def main():
                     help="the deepest indentation: the fraction of the (finest) gap profile below it")
     ap.add_argument("--hurst", type=float, default=0.8, help="Hurst exponent")
     ap.add_argument("--slope", type=float, default=0.1, help="rms slope")
+    ap.add_argument("--perturb", type=int, default=0, metavar="K",
+                    help="also run each case K more times on heights perturbed by --perturb-size of their rms, and report the spread")
+    ap.add_argument("--perturb-size", type=float, default=1e-6, help="relative size of --perturb's perturbation (default 1e-6)")
     ap.add_argument("--json", help="write all numbers to this JSON file")
     ap.add_argument("--keep", help="keep the results files in this directory")
     ap.add_argument("extra", nargs="*", help="further adhbem options, after --")

@@ -216,6 +216,7 @@ def main():
     ap.add_argument("--radius", type=float, help="crack-closure's averaging radius (-adh_criterion_radius)")
     ap.add_argument("--radius-max", type=float, help="crack-closure's largest averaging radius (-adh_criterion_radius_max;"
                     " equal to the radius: a fixed window)")
+    ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
     ap.add_argument("--quick", action="store_true", help="the coarse grids only")
     ap.add_argument("--fine", action="store_true", help="also a third, finer grid for the sphere and the punch")
     args = ap.parse_args()
@@ -223,6 +224,8 @@ def main():
         OPTIONS["criterion_radius"] = args.radius
     if args.radius_max is not None:
         OPTIONS["criterion_radius_max"] = args.radius_max
+    if args.cascade_rtol is not None:
+        OPTIONS["cascade_rtol"] = args.cascade_rtol
     cases = [(wave, (256, 1, 0)), (wave, (512, 1, 0)), (wave, (2048, 1, 0)), (wave, (256, 2, 1)), (wave, (256, 1, 1)),
              (wave, (512, 4, 1)), (wave, (512, 3, 1)), (wave, (512, 5, 2)),
              (sphere, (25,)), (cone, (40,)), (punch, (17.5,))]

@@ -108,7 +108,7 @@ def load(N, alpha=0.3, attach="reach", dp=0.005, diagonal=False, criterion="crac
     cell = L * ny * hgrid
     s = adhbem.Solver(n=(N, ny), size=(L, ny * hgrid), gamma=dgamma, E_star=E, boundary="periodic",
                       topography=h, topography_kind="gap", start="adhesive", criterion=criterion,
-                      attach=attach, control="force", steps=1)
+                      attach=attach, control="force", steps=1, **OPTIONS)
     tmin, tmax, pmin, pmax = branch(alpha)
     total = N * ny
     states = []
@@ -159,6 +159,9 @@ HEADER = (f"{'wave':7s} {'grid':>9s} {'lam/h':>6s} {'alpha':>5s} {'attach':>11s}
           f" {'a_last':>7s} {'dg_eff':>7s} {'outer':>6s} {'KSP':>7s} {'K apps':>7s}")
 
 
+OPTIONS = {}  # further solver options (--cascade-rtol)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--n", default="128,256,512", help="grid points per wavelength along the axis")
@@ -167,7 +170,10 @@ def main():
     ap.add_argument("--dp", type=float, default=0.005, help="load step in units of p*")
     ap.add_argument("--fine", type=float, help="load step from 0.9 p_max on, in units of p* (default: dp)")
     ap.add_argument("--angle45", action="store_true", help="also the wave at 45 degrees for the first two n: N x N cells, N = n sqrt 2 (lam/h = n)")
+    ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
     args = ap.parse_args()
+    if args.cascade_rtol is not None:
+        OPTIONS["cascade_rtol"] = args.cascade_rtol
     print(HEADER)
     print("(a/a_th: mean over the states with 0 <= p < 0.9 p_max; p_last, p_jump: the last partial and the first full-contact"
           " state's p / p_max; a_last: the last partial state's a / a_max; dg_eff: the median over those states of the"

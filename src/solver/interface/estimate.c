@@ -8,10 +8,11 @@
    contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G and three vectors
-   of the rows each rank looks at (40) and the front's links over them (one PetscInt), and their
-   rows beyond the rank's own: 2 max(3, ceil(R)) rows of Nx points each per rank (R the largest
-   radius, -adh_criterion_radius_max); -adh_attach griffith a fourth such vector and its limits (16). Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G (16) and the
+   front's links over the rows each rank looks at (one PetscInt), and per rank the rows other
+   ranks own among those (three buffers of u, h and G, and the links): 2 max(3, ceil(R)) rows of
+   Nx points (R the largest radius, -adh_criterion_radius_max); -adh_attach griffith its limits
+   (8) and a fourth buffer, of p. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solver/solverimpl.h"
 
@@ -25,7 +26,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 40.0 + sizeof(PetscInt) : 0.0) + (griffith ? 16.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 16.0 + sizeof(PetscInt) : 0.0) + (griffith ? 8.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
 }
 

@@ -31,6 +31,14 @@
    ones. */
 #include "solver/solverimpl.h"
 
+/* The rows a rank looks at of one grid vector: the vector (its own rows) and the buffer of the
+   rows other ranks own (FetchRows), and, while in use, the row pointers (GetRows). */
+typedef struct {
+  Vec                v, ghost;
+  const PetscScalar *own, *far;
+  PetscScalar      **store;
+} FetchedRows;
+
 typedef struct {
   PetscReal radius;     /* the release rate is averaged along the front within radius grid spacings, */
   PetscReal radius_max; /* or near dgamma within the front's radius of curvature, up to radius_max */
@@ -40,10 +48,14 @@ typedef struct {
      from whichever ranks own them: a rank may own fewer rows than the width, and a narrow cell's
      averaging window folds onto itself. */
   PetscInt    gys, gym;
-  VecScatter  fetch;        /* grid vector -> its rows gys..gys+gym-1 */
+  /* Of those rows, the ones another rank owns are fetched into a buffer of their own; the rank's
+     own rows (every row on one rank) are read where they are: the buffers hold 2 width rows, not
+     copies of the grid vectors (32 B a point less). rowmap[r] of row gys + r: its local row in
+     the grid vector (>= 0), or -1 - its row in the buffer. */
+  PetscInt   *rowmap, nghost, nx;
+  VecScatter  fetch;        /* grid vector -> the other ranks' rows among them */
   Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
-  Vec         ul, hl, Gl, pl; /* the same over the fetched rows, h, and p (griffith) */
-  PetscScalar **urow, **hrow, **Grow, **prow; /* their rows, indexed by global row from gys */
+  FetchedRows U, H, Gf, P;  /* the rows of u, h, G and p (griffith) */
   PetscInt   *seen, *queue; /* the walk along the front within the disk: offsets (2 width + 1)^2 */
   PetscInt   *col, *row;    /* the walk's columns and rows in the fetched rows, 2 width + 1 each */
   PetscInt   *links;        /* per fetched point of the front, its front neighbours within two
@@ -81,17 +93,26 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
     cc->gym = PetscMin(g->Ny, ys + ym + cc->width) - cc->gys;
   }
   PetscCall(PetscMalloc1(cc->gym, &rows));
-  for (PetscInt r = 0; r < cc->gym; r++) rows[r] = ((cc->gys + r) % g->Ny + g->Ny) % g->Ny;
-  PetscCall(ISCreateBlock(PETSC_COMM_SELF, g->Nx, cc->gym, rows, PETSC_OWN_POINTER, &from));
+  PetscCall(PetscMalloc1(cc->gym, &cc->rowmap));
+  cc->nx     = g->Nx;
+  cc->nghost = 0;
+  for (PetscInt r = 0; r < cc->gym; r++) {
+    const PetscInt b = ((cc->gys + r) % g->Ny + g->Ny) % g->Ny;
+    if (b >= ys && b < ys + ym) cc->rowmap[r] = b - ys;
+    else {
+      rows[cc->nghost] = b;
+      cc->rowmap[r]    = -1 - cc->nghost++;
+    }
+  }
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, g->Nx, cc->nghost, rows, PETSC_OWN_POINTER, &from));
   PetscCall(AdhGridCreateVector(g, &cc->u));
   PetscCall(VecDuplicate(cc->u, &cc->G));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, cc->gym * g->Nx, &cc->ul));
-  PetscCall(VecSetBlockSize(cc->ul, g->Nx));
-  PetscCall(VecDuplicate(cc->ul, &cc->hl));
-  PetscCall(VecDuplicate(cc->ul, &cc->Gl));
-  PetscCall(VecScatterCreate(cc->u, from, cc->ul, NULL, &cc->fetch));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, cc->nghost * g->Nx, &cc->U.ghost));
+  PetscCall(VecDuplicate(cc->U.ghost, &cc->H.ghost));
+  PetscCall(VecDuplicate(cc->U.ghost, &cc->Gf.ghost));
+  PetscCall(VecScatterCreate(cc->u, from, cc->U.ghost, NULL, &cc->fetch));
   PetscCall(ISDestroy(&from));
-  PetscCall(PetscMalloc4(cc->gym, &cc->urow, cc->gym, &cc->hrow, cc->gym, &cc->Grow, cc->gym, &cc->prow));
+  PetscCall(PetscMalloc4(cc->gym, &cc->U.store, cc->gym, &cc->H.store, cc->gym, &cc->Gf.store, cc->gym, &cc->P.store));
   side = 2 * cc->width + 1;
   PetscCall(PetscCalloc2(side * side, &cc->seen, side * side, &cc->queue));
   PetscCall(PetscMalloc2(side, &cc->col, side, &cc->row));
@@ -99,35 +120,35 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* Grid vector v's values on the rows this rank looks at, into l. */
-static PetscErrorCode FetchRows(CrackClosure *cc, Vec v, Vec l)
+/* The rows this rank looks at of grid vector v: the other ranks' rows fetched into f's buffer;
+   v itself must not change while they are in use. */
+static PetscErrorCode FetchRows(CrackClosure *cc, Vec v, FetchedRows *f)
 {
   PetscFunctionBegin;
-  PetscCall(VecScatterBegin(cc->fetch, v, l, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(cc->fetch, v, l, INSERT_VALUES, SCATTER_FORWARD));
+  f->v = v;
+  PetscCall(VecScatterBegin(cc->fetch, v, f->ghost, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(cc->fetch, v, f->ghost, INSERT_VALUES, SCATTER_FORWARD));
   PetscFunctionReturn(0);
 }
 
-/* The fetched rows of l: rows[b] is row b of the grid (gys <= b < gys + gym), as DMDA gives them. */
-static PetscErrorCode GetRows(CrackClosure *cc, Vec l, PetscScalar **store, const PetscScalar ***rows)
+/* The fetched rows of f: rows[b] is row b of the grid (gys <= b < gys + gym), as DMDA gives them. */
+static PetscErrorCode GetRows(CrackClosure *cc, FetchedRows *f, const PetscScalar ***rows)
 {
-  const PetscScalar *a;
-  PetscInt           nx;
+  const PetscInt nx = cc->nx;
 
   PetscFunctionBegin;
-  PetscCall(VecGetBlockSize(l, &nx));
-  PetscCall(VecGetArrayRead(l, &a));
-  for (PetscInt r = 0; r < cc->gym; r++) store[r] = (PetscScalar *)a + r * nx;
-  *rows = (const PetscScalar **)(store - cc->gys);
+  PetscCall(VecGetArrayRead(f->v, &f->own));
+  PetscCall(VecGetArrayRead(f->ghost, &f->far));
+  for (PetscInt r = 0; r < cc->gym; r++) f->store[r] = (PetscScalar *)(cc->rowmap[r] >= 0 ? f->own + cc->rowmap[r] * nx : f->far + (-1 - cc->rowmap[r]) * nx);
+  *rows = (const PetscScalar **)(f->store - cc->gys);
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode RestoreRows(Vec l, PetscScalar **store, const PetscScalar ***rows)
+static PetscErrorCode RestoreRows(FetchedRows *f, const PetscScalar ***rows)
 {
-  const PetscScalar *a = store[0];
-
   PetscFunctionBegin;
-  PetscCall(VecRestoreArrayRead(l, &a));
+  PetscCall(VecRestoreArrayRead(f->v, &f->own));
+  PetscCall(VecRestoreArrayRead(f->ghost, &f->far));
   *rows = NULL;
   PetscFunctionReturn(0);
 }
@@ -370,12 +391,12 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
 
   PetscFunctionBegin;
   if (!s->attach_limit) PetscCall(VecDuplicate(s->p, &s->attach_limit));
-  if (!cc->pl) PetscCall(VecDuplicate(cc->ul, &cc->pl));
+  if (!cc->P.ghost) PetscCall(VecDuplicate(cc->U.ghost, &cc->P.ghost));
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
-  PetscCall(FetchRows(cc, s->p, cc->pl));
-  PetscCall(GetRows(cc, cc->ul, cc->urow, &ul));
-  PetscCall(GetRows(cc, cc->hl, cc->hrow, &hl));
-  PetscCall(GetRows(cc, cc->pl, cc->prow, &pl));
+  PetscCall(FetchRows(cc, s->p, &cc->P));
+  PetscCall(GetRows(cc, &cc->U, &ul));
+  PetscCall(GetRows(cc, &cc->H, &hl));
+  PetscCall(GetRows(cc, &cc->P, &pl));
   PetscCall(VecGetArray(cc->G, &Ga));
   for (j = ys; j < ys + ym; j++)
     for (i = 0; i < g->Nx; i++) {
@@ -402,11 +423,11 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
       if (tension > 0) Ga[k] = tension * (hj - s->d + PetscRealPart(ul[j][i])) / 2.0;
     }
   PetscCall(VecRestoreArray(cc->G, &Ga));
-  PetscCall(RestoreRows(cc->pl, cc->prow, &pl));
-  PetscCall(FetchRows(cc, cc->G, cc->Gl));
+  PetscCall(RestoreRows(&cc->P, &pl));
+  PetscCall(FetchRows(cc, cc->G, &cc->Gf));
 
   /* the mean along the outer front, against dgamma, as a limit on the gap */
-  PetscCall(GetRows(cc, cc->Gl, cc->Grow, &Gl));
+  PetscCall(GetRows(cc, &cc->Gf, &Gl));
   PetscCall(FrontLinks(s, cc, wrap, Gl));
   PetscCall(VecGetArray(s->attach_limit, &la));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
@@ -423,9 +444,9 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
     }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(VecRestoreArray(s->attach_limit, &la));
-  PetscCall(RestoreRows(cc->Gl, cc->Grow, &Gl));
-  PetscCall(RestoreRows(cc->hl, cc->hrow, &hl));
-  PetscCall(RestoreRows(cc->ul, cc->urow, &ul));
+  PetscCall(RestoreRows(&cc->Gf, &Gl));
+  PetscCall(RestoreRows(&cc->H, &hl));
+  PetscCall(RestoreRows(&cc->U, &ul));
   s->attach_limit_current = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -467,11 +488,11 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
     for (k = 0; k < s->nlocal; k++)
       if (s->in_set[k]) ua[k] = NAN;
     PetscCall(VecRestoreArray(cc->u, &ua));
-    PetscCall(FetchRows(cc, cc->u, cc->ul));
+    PetscCall(FetchRows(cc, cc->u, &cc->U));
   }
   cc->decided = (PetscBool)(decision != NULL);
   if (cc->h_version != s->profile_version) { /* h changes only with the profile */
-    PetscCall(FetchRows(cc, s->h, cc->hl));
+    PetscCall(FetchRows(cc, s->h, &cc->H));
     cc->h_version = s->profile_version;
   }
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
@@ -484,8 +505,8 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
      edge's normal. So the opening a front point gets is, by that shift, the one its neighbour
      along that axis has now: delta is the opening of the open neighbour closest to the normal
      (ties: the smaller opening). */
-  PetscCall(GetRows(cc, cc->ul, cc->urow, &ul));
-  PetscCall(GetRows(cc, cc->hl, cc->hrow, &hl));
+  PetscCall(GetRows(cc, &cc->U, &ul));
+  PetscCall(GetRows(cc, &cc->H, &hl));
   PetscCall(VecGetArray(s->p, &pa));
   PetscCall(VecGetArray(cc->G, &Ga));
   for (j = ys; j < ys + ym; j++)
@@ -518,14 +539,14 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       if (decision) E = PetscMax(E, (PetscAbsReal(ti) * gerr + PetscAbsReal(open) * perr + perr * gerr) / 2.0);
     }
   PetscCall(VecRestoreArray(cc->G, &Ga));
-  PetscCall(RestoreRows(cc->hl, cc->hrow, &hl));
-  PetscCall(RestoreRows(cc->ul, cc->urow, &ul));
-  PetscCall(FetchRows(cc, cc->G, cc->Gl));
+  PetscCall(RestoreRows(&cc->H, &hl));
+  PetscCall(RestoreRows(&cc->U, &ul));
+  PetscCall(FetchRows(cc, cc->G, &cc->Gf));
   if (decision) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &E, 1, MPIU_REAL, MPIU_MAX, s->comm));
 
   /* pass 2: the mean release rate of the front points within each point's window, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
-  PetscCall(GetRows(cc, cc->Gl, cc->Grow, &Gl));
+  PetscCall(GetRows(cc, &cc->Gf, &Gl));
   PetscCall(FrontLinks(s, cc, wrap, Gl));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (j = ys; j < ys + ym; j++)
@@ -567,7 +588,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       } else r = PetscMax(r, load);
     }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  PetscCall(RestoreRows(cc->Gl, cc->Grow, &Gl));
+  PetscCall(RestoreRows(&cc->Gf, &Gl));
   if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   if (removed) {
@@ -613,12 +634,13 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(VecDestroy(&cc->u));
   PetscCall(VecDestroy(&cc->G));
-  PetscCall(VecDestroy(&cc->ul));
-  PetscCall(VecDestroy(&cc->hl));
-  PetscCall(VecDestroy(&cc->Gl));
-  PetscCall(VecDestroy(&cc->pl));
+  PetscCall(VecDestroy(&cc->U.ghost));
+  PetscCall(VecDestroy(&cc->H.ghost));
+  PetscCall(VecDestroy(&cc->Gf.ghost));
+  PetscCall(VecDestroy(&cc->P.ghost));
+  PetscCall(PetscFree(cc->rowmap));
   PetscCall(VecScatterDestroy(&cc->fetch));
-  PetscCall(PetscFree4(cc->urow, cc->hrow, cc->Grow, cc->prow));
+  PetscCall(PetscFree4(cc->U.store, cc->H.store, cc->Gf.store, cc->P.store));
   PetscCall(PetscFree2(cc->seen, cc->queue));
   PetscCall(PetscFree2(cc->col, cc->row));
   PetscCall(PetscFree(cc->links));

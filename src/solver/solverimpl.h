@@ -148,7 +148,7 @@ struct _n_AdhSolver {
   VecScatter set_scatter;     /* set values -> that window or grid */
   PetscInt *set_local, nset_local; /* local offsets of this rank's points in the set */
   Vec       pC, bC;           /* pressure and right-hand side on the set */
-  PetscScalar *thrC;          /* allowed tension on the set */
+  PetscScalar *thrC;          /* allowed tension on the set, with a critical stress field (NULL: uniform) */
 
   /* bounding-box convolution */
   PetscBool use_box;
@@ -156,7 +156,8 @@ struct _n_AdhSolver {
   PetscInt  nboxes, maxboxes, box_i0, box_j0;
 
   /* the current solve, read by the convergence test and the preconditioner */
-  const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set */
+  const PetscScalar *threshold_local; /* -threshold is the allowed tension, on the set (NULL: threshold_uniform) */
+  PetscReal          threshold_uniform;
   PetscReal bnorm;
   PetscBool certify, certify_solve, certified_stop;
   PetscReal cascade_rtol;     /* -adh_cascade_rtol: the solves between set updates stop at this relative residual (0: at the KSP's) */

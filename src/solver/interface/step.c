@@ -49,9 +49,8 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscCall(PetscMalloc1(count, &idx));
   PetscCall(PetscMalloc1(count, &opidx));
   PetscCall(PetscFree(s->set_local));
-  PetscCall(PetscFree(s->thrC));
+  PetscCall(PetscFree(s->thrC)); /* made by the solve where the critical stress varies */
   PetscCall(PetscMalloc1(count + 1, &s->set_local));
-  PetscCall(PetscMalloc1(count + 1, &s->thrC));
   for (k = 0, count = 0; k < nlocal; k++)
     if (s->in_set[k]) {
       s->set_local[count] = k;
@@ -322,13 +321,16 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
+  /* the allowed tension on the set: one value, or (a field) an array of the set's size, 8 B a
+     point of the set that a uniform dgamma does without */
+  if (ta && !s->thrC) PetscCall(PetscMalloc1(s->nset_local + 1, &s->thrC));
   PetscCall(VecGetArrayWrite(s->pC, &xc));
   PetscCall(VecGetArrayWrite(s->bC, &bc));
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
     xc[k]         = xa[m];
     bc[k]         = shift - (ha ? ha[m] : 0.0);
-    s->thrC[k]    = ADH_SIGMA_AT(ta, tu, m);
+    if (ta) s->thrC[k] = ADH_SIGMA_AT(ta, tu, m);
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
   PetscCall(VecRestoreArrayWrite(s->pC, &xc));
@@ -336,7 +338,8 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
-  s->threshold_local = s->thrC;
+  s->threshold_local   = ta ? s->thrC : NULL;
+  s->threshold_uniform = tu;
   s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.decide && s->lambda_set > 0);
   s->detach_perr     = PETSC_MAX_REAL;
   s->detach_none     = PETSC_FALSE;

@@ -45,7 +45,7 @@ static PetscErrorCode Decide_PohrtPopov(AdhSolver s, Vec xC, PetscReal perr, Adh
   PetscCall(VecGetLocalSize(xC, &n));
   PetscCall(VecGetArrayRead(xC, &xa));
   for (k = 0; k < n; k++) {
-    const PetscReal margin = PetscRealPart(xa[k]) + PetscRealPart(s->threshold_local[k]);
+    const PetscReal margin = PetscRealPart(xa[k]) + ADH_SIGMA_AT(s->threshold_local, s->threshold_uniform, k);
     v[0]                   = PetscMax(v[0], -PetscAbsReal(margin)); /* max of -|margin| = -min |margin| */
     if (margin < 0) v[1] = 1.0;
   }

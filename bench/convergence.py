@@ -373,7 +373,7 @@ def report_spread(name, results, sizes, criteria, k, eps):
             for n in sizes:
                 r = results[crit][n]
                 m, sd = r["mean"][key], r["spread"][key]
-                cells.append(f"{fmt(m)} +- {sd:.2g} ({100 * sd / abs(m):.2g}%)" if m else "n/a")
+                cells.append(f"{fmt(m)} +- {sd:.2g} ({100 * sd / abs(m):.2g}%)" if m and math.isfinite(m) else "n/a")
             print(f"| {crit} | {label} | " + " | ".join(cells) + " |")
 
 
@@ -422,8 +422,9 @@ def study(name, a, sizes, criteria):
                 print(f"[{name} {crit} N = {n}, perturbed {m + 1}/{a.perturb}: CPU {cpum:.1f} s]", file=sys.stderr, flush=True)
             if a.perturb:
                 results[crit][n]["perturbed"] = samples[1:]
-                results[crit][n]["spread"] = {key: float(np.std([v[key] for v in samples], ddof=1)) for key, _ in QUANTITIES}
-                results[crit][n]["mean"] = {key: float(np.mean([v[key] for v in samples])) for key, _ in QUANTITIES}
+                # a sample that pulled off before d1/2 has no force there: the others still count
+                results[crit][n]["spread"] = {key: float(np.nanstd([v[key] for v in samples], ddof=1)) for key, _ in QUANTITIES}
+                results[crit][n]["mean"] = {key: float(np.nanmean([v[key] for v in samples])) for key, _ in QUANTITIES}
         info["richardson"][crit] = {key: richardson([results[crit][n]["quantities"][key] for n in sizes])
                                     for key, _ in QUANTITIES}
     report_config(name, info, results, sizes, criteria)
@@ -467,6 +468,8 @@ def main():
     sizes = [int(v) for v in a.n.split(",")] if a.n else [48, 96, 192] if a.quick else [128, 256, 512]
     if len(sizes) < 3:
         ap.error("--n: three grids (or more) are needed for the observed order")
+    if a.perturb < 0 or not a.perturb_size > 0:
+        ap.error("--perturb must be >= 0 and --perturb-size > 0")
     criteria = [c for c in a.criteria.split(",") if c]
     if a.keep:
         os.makedirs(a.keep, exist_ok=True)

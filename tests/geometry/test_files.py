@@ -213,6 +213,18 @@ def test_constant_gamma_field_is_the_scalar(tmp, jkr, source):
     assert err < 1e-12
 
 
+def test_constant_gamma_field_is_the_scalar_with_the_papers_criterion():
+    """The same with pohrt-popov, whose certified early stop reads the allowed tension point by
+    point where a field gives it (and one value where dgamma is uniform)."""
+    opts = dict(ADH_OPTS, criterion="pohrt-popov")
+    scalar = adhbem.Solver(**opts).solve_path()
+    c = adhbem.Solver(gamma_field=np.full((N, N), GAMMA), **opts).solve_path()
+    assert scalar["force"].min() < 0
+    err = same_curve(c, scalar)
+    print(f"\npohrt-popov, constant gamma field vs scalar: {err:.1e}")
+    assert err < 1e-12
+
+
 def test_gamma_field_changes_the_curve(tmp, jkr):
     g = np.full((N, N), GAMMA)
     g[: N // 2] *= 3.0                                # stickier on the lower half (y < 0)

@@ -10,8 +10,9 @@
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
    bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G (16) and the
    front's links over the rows each rank looks at (one PetscInt), and per rank the rows other
-   ranks own among those (three buffers of u, h and G, and the links): 2 max(3, ceil(R)) rows of
-   Nx points (R the largest radius, -adh_criterion_radius_max); -adh_attach griffith its limits
+   ranks own among those (three buffers of u, h and G, and the links): at most 2 max(3, ceil(R))
+   rows of Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted
+   all the same); -adh_attach griffith its limits
    (8) and a fourth buffer, of p. Each rank also holds about 50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solver/solverimpl.h"

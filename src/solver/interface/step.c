@@ -310,6 +310,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscInt           its, k;
   const PetscScalar *xa, *ha = NULL, *ta = NULL;
   PetscReal          tu;
+  PetscBool          field;
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
@@ -322,15 +323,16 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   /* the allowed tension on the set: one value, or (a field) an array of the set's size, 8 B a
-     point of the set that a uniform dgamma does without */
-  if (ta && !s->thrC) PetscCall(PetscMalloc1(s->nset_local + 1, &s->thrC));
+     point of the set that a uniform dgamma does without (field: before the restore clears ta) */
+  field = (PetscBool)(ta != NULL);
+  if (field && !s->thrC) PetscCall(PetscMalloc1(s->nset_local + 1, &s->thrC));
   PetscCall(VecGetArrayWrite(s->pC, &xc));
   PetscCall(VecGetArrayWrite(s->bC, &bc));
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
     xc[k]         = xa[m];
     bc[k]         = shift - (ha ? ha[m] : 0.0);
-    if (ta) s->thrC[k] = ADH_SIGMA_AT(ta, tu, m);
+    if (field) s->thrC[k] = ADH_SIGMA_AT(ta, tu, m);
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
   PetscCall(VecRestoreArrayWrite(s->pC, &xc));
@@ -338,7 +340,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));
-  s->threshold_local   = ta ? s->thrC : NULL;
+  s->threshold_local   = field ? s->thrC : NULL;
   s->threshold_uniform = tu;
   s->certify_solve   = (PetscBool)(certify && s->certify && s->crops.decide && s->lambda_set > 0);
   s->detach_perr     = PETSC_MAX_REAL;

@@ -43,15 +43,15 @@ typedef struct {
   PetscReal radius;     /* the release rate is averaged along the front within radius grid spacings, */
   PetscReal radius_max; /* or near dgamma within the front's radius of curvature, up to radius_max */
   PetscInt  width;      /* rows looked at each side: AdhCrackClosureWidth(radius_max) */
-  /* This rank's rows and width rows each side, gym rows from gys (wrapped on a periodic cell, so a
-     cell with fewer rows than that holds some rows several times; clipped to a free grid), fetched
-     from whichever ranks own them: a rank may own fewer rows than the width, and a narrow cell's
-     averaging window folds onto itself. */
+  /* The rows this rank looks at: its own and width rows each side, gym rows from gys (wrapped on
+     a periodic cell, so a cell with fewer rows than that holds some rows several times; clipped
+     to a free grid): a rank may own fewer rows than the width, and a narrow cell's averaging
+     window folds onto itself. */
   PetscInt    gys, gym;
   /* Of those rows, the ones another rank owns are fetched into a buffer of their own; the rank's
-     own rows (every row on one rank) are read where they are: the buffers hold 2 width rows, not
-     copies of the grid vectors (32 B a point less). rowmap[r] of row gys + r: its local row in
-     the grid vector (>= 0), or -1 - its row in the buffer. */
+     own rows (every row on one rank) are read where they are: the buffers hold at most 2 width
+     rows, not copies of the grid vectors (24 B a point less, 32 under griffith). rowmap[r] of row
+     gys + r: its local row in the grid vector (>= 0), or -1 - its row in the buffer. */
   PetscInt   *rowmap, nghost, nx;
   VecScatter  fetch;        /* grid vector -> the other ranks' rows among them */
   Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
@@ -61,8 +61,8 @@ typedef struct {
   PetscInt   *links;        /* per fetched point of the front, its front neighbours within two
                                rows and columns as bits (FrontLinks) */
   PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
-  PetscInt    h_version;    /* the profile hl was fetched from (s->profile_version; 0: none yet) */
-  PetscBool   decided;      /* u, ul and s->g belong to the iterate of the last decision */
+  PetscInt    h_version;    /* the profile H's rows were fetched from (s->profile_version; 0: none yet) */
+  PetscBool   decided;      /* u, U's rows and s->g belong to the iterate of the last decision */
 } CrackClosure;
 
 /* defined below: the certified stop, chosen at set-up (-adh_criterion_certify) */

@@ -138,6 +138,7 @@ struct _n_AdhSolver {
   PetscBool attach_limit_current; /* it belongs to the current p (the detach test just before let nothing go) */
   IS        contact;
   PetscInt  npoints;          /* global size of the set */
+  PetscInt  set_version;      /* counts the sets the solver has held (AdhSolverRebuildSet_Private) */
   KSP       ksp;
   Mat       Kcc;              /* K restricted to the set, applied on the window or the grid */
   IS        contact_op;       /* the set in the numbering of the operator behind Kcc */

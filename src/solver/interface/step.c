@@ -48,6 +48,7 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   for (k = 0; k < nlocal; k++) count += s->in_set[k] ? 1 : 0;
   PetscCall(PetscMalloc1(count, &idx));
   PetscCall(PetscMalloc1(count, &opidx));
+  s->set_version++;
   PetscCall(PetscFree(s->set_local));
   PetscCall(PetscFree(s->thrC)); /* made by the solve where the critical stress varies */
   PetscCall(PetscMalloc1(count + 1, &s->set_local));

@@ -39,6 +39,18 @@ typedef struct {
   PetscScalar      **store;
 } FetchedRows;
 
+/* What the evaluations of one contact set share, kept with the certified stop (which evaluates a
+   set at several iterates): per front point, the open neighbours whose opening it may take (those
+   closest to the edge's normal; the smallest opening among them counts) and its walks along the
+   front, as members (fetched row - gys) Nx + column with their weights, in the walk's order, so
+   that a cached mean is the walk's to the last bit. */
+typedef struct {
+  PetscInt  ncand, cand[4]; /* the open neighbours closest to the normal */
+  PetscInt  w16, n16;       /* the walk within the radius: members from w16, n16 of them (-1: not walked) */
+  PetscInt  wR, nR;         /* the walk within the radius of curvature (-1: not walked) */
+  PetscReal kappa;          /* the front's curvature there, from the walk within the radius */
+} FrontEntry;
+
 typedef struct {
   PetscReal radius;     /* the release rate is averaged along the front within radius grid spacings, */
   PetscReal radius_max; /* or near dgamma within the front's radius of curvature, up to radius_max */
@@ -63,6 +75,15 @@ typedef struct {
   PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
   PetscInt    h_version;    /* the profile H's rows were fetched from (s->profile_version; 0: none yet) */
   PetscBool   decided;      /* u, U's rows and s->g belong to the iterate of the last decision */
+  /* the front's cache (with the certified stop): slot[k] of local point k is its FrontEntry, -1
+     not made yet, -2 in the set but not on the front; valid for the set cache_set */
+  PetscBool   cache;
+  PetscInt    cache_set, links_set; /* the set the cache belongs to; the set whose front links holds (-1: none, or griffith's outer front) */
+  PetscInt   *slot;
+  FrontEntry *entry;
+  PetscInt    nentry, capentry, nmember, capmember;
+  PetscInt   *member;
+  PetscReal  *weight;
 } CrackClosure;
 
 /* defined below: the certified stop, chosen at set-up (-adh_criterion_certify) */
@@ -83,6 +104,12 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   cc->radius_max = PetscMax(s->criterion_radius, s->criterion_radius_max);
   /* its certified stop saves KSP iterations but costs more than it saves (docs/performance.md) */
   s->crops.decide = s->criterion_certify ? Decide_CrackClosure : NULL;
+  /* the certified stop evaluates a set at several iterates: keep its front's walks (a PetscInt a
+     point, and about 0.5 kB a front point) */
+  cc->cache     = s->criterion_certify;
+  cc->cache_set = -1;
+  cc->links_set = -1;
+  if (cc->cache) PetscCall(PetscMalloc1(s->nlocal + 1, &cc->slot));
   cc->width       = AdhCrackClosureWidth(cc->radius_max);
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   if (periodic) {
@@ -225,6 +252,15 @@ static PetscErrorCode FrontLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, 
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode EnsureInnerLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl)
+{
+  PetscFunctionBegin;
+  if (cc->links_set == s->set_version) PetscFunctionReturn(0);
+  PetscCall(FrontLinks(s, cc, wrap, Gl));
+  cc->links_set = s->set_version;
+  PetscFunctionReturn(0);
+}
+
 /* The front's curvature (1/grid spacings, >= 0) from a window's moments M[a][b] = sum wt di^a dj^b
    about a front point: the tangent is the major axis of the centred second moments, and
    y = c0 + c1 s + kappa s^2 / 2 is fitted by weighted least squares (s along the tangent, y along
@@ -286,7 +322,7 @@ static PetscErrorCode FitCurvature(PetscReal M[5][5], PetscReal *curvature)
    (1 - r^2/radius^2)^2, which fades out at the rim: a staircase period cut by the rim then weighs
    little, and the mean over a curved edge does not depend on where the rim cuts it. With
    curvature, also the front's curvature at (i, j) (1/grid spacings), fitted to the same points. */
-static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal radius, PetscReal *sum, PetscReal *weights, PetscReal *curvature)
+static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal radius, PetscReal *sum, PetscReal *weights, PetscReal *curvature, PetscBool record)
 {
   const AdhGrid   g = s->grid;
   const PetscInt  w = cc->width, side = 2 * w + 1;
@@ -321,6 +357,15 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
     PetscCheck(col[di] != NONE && row[dj] != NONE, PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: front point outside the fetched rows");
     *sum += wt * PetscRealPart(Gl[row[dj]][col[di]]);
     *weights += wt;
+    if (record) { /* into the front's cache */
+      if (cc->nmember == cc->capmember) {
+        cc->capmember = PetscMax(1024, 2 * cc->capmember);
+        PetscCall(PetscRealloc(cc->capmember * sizeof(PetscInt), &cc->member));
+        PetscCall(PetscRealloc(cc->capmember * sizeof(PetscReal), &cc->weight));
+      }
+      cc->member[cc->nmember]   = (row[dj] - gys) * g->Nx + col[di];
+      cc->weight[cc->nmember++] = wt;
+    }
     if (curvature) {
       PetscReal xa = wt;
       for (PetscInt a = 0; a <= 4; a++, xa *= di) {
@@ -358,14 +403,64 @@ static PetscErrorCode WindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, 
 
   PetscFunctionBegin;
   *margin = PETSC_MAX_REAL;
-  PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, cc->radius, sum, weights, adapts ? &kappa : NULL));
+  PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, cc->radius, sum, weights, adapts ? &kappa : NULL, PETSC_FALSE));
   if (!adapts || kappa == PETSC_MAX_REAL || !(*weights > 0)) PetscFunctionReturn(0);
   R = kappa > 1.0 / cc->radius_max ? 1.0 / kappa : cc->radius_max;
   if (R <= cc->radius + 0.5) PetscFunctionReturn(0);
   mean    = *sum / *weights;
   *margin = PetscMin(mean - lo, hi - mean);
   if (*margin < 0) *margin = -*margin; /* outside the band: the window of the radius */
-  else PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, R, sum, weights, NULL));
+  else PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, R, sum, weights, NULL, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* A cached walk's mean: the same sums in the same order as the walk's. */
+static inline void CachedSums(CrackClosure *cc, const PetscScalar **Gl, PetscInt w0, PetscInt n, PetscReal *sum, PetscReal *weights)
+{
+  const PetscInt Nx = cc->nx;
+  *sum     = 0.0;
+  *weights = 0.0;
+  for (PetscInt m = w0; m < w0 + n; m++) {
+    *sum += cc->weight[m] * PetscRealPart(Gl[cc->gys + cc->member[m] / Nx][cc->member[m] % Nx]);
+    *weights += cc->weight[m];
+  }
+}
+
+/* The front's links for the inner front of the current set, before a walk needs them. */
+static PetscErrorCode EnsureInnerLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl);
+
+/* WindowMean through the front's cache: each walk once per set (recorded on first use), then
+   its members' sums. Local point k's entry was made by pass 1. */
+static PetscErrorCode CachedWindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscInt k, PetscReal lo, PetscReal hi, PetscReal *sum, PetscReal *weights, PetscReal *margin)
+{
+  const PetscBool adapts = (PetscBool)(cc->radius_max > cc->radius);
+  FrontEntry     *e;
+  PetscReal       R, mean;
+
+  PetscFunctionBegin;
+  PetscCheck(cc->slot[k] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: a front point without its cache entry");
+  *margin = PETSC_MAX_REAL;
+  e       = &cc->entry[cc->slot[k]];
+  if (e->n16 < 0) {
+    PetscReal kappa = PETSC_MAX_REAL;
+    PetscCall(EnsureInnerLinks(s, cc, wrap, Gl));
+    e->w16 = cc->nmember;
+    PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, cc->radius, sum, weights, adapts ? &kappa : NULL, PETSC_TRUE));
+    e->n16   = cc->nmember - e->w16;
+    e->kappa = kappa;
+  } else CachedSums(cc, Gl, e->w16, e->n16, sum, weights);
+  if (!adapts || e->kappa == PETSC_MAX_REAL || !(*weights > 0)) PetscFunctionReturn(0);
+  R = e->kappa > 1.0 / cc->radius_max ? 1.0 / e->kappa : cc->radius_max;
+  if (R <= cc->radius + 0.5) PetscFunctionReturn(0);
+  mean    = *sum / *weights;
+  *margin = PetscMin(mean - lo, hi - mean);
+  if (*margin < 0) *margin = -*margin; /* outside the band: the window of the radius */
+  else if (e->nR < 0) {
+    PetscCall(EnsureInnerLinks(s, cc, wrap, Gl));
+    e->wR = cc->nmember;
+    PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, R, sum, weights, NULL, PETSC_TRUE));
+    e->nR = cc->nmember - e->wR;
+  } else CachedSums(cc, Gl, e->wR, e->nR, sum, weights);
   PetscFunctionReturn(0);
 }
 
@@ -429,6 +524,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   /* the mean along the outer front, against dgamma, as a limit on the gap */
   PetscCall(GetRows(cc, &cc->Gf, &Gl));
   PetscCall(FrontLinks(s, cc, wrap, Gl));
+  cc->links_set = -1; /* the outer front's now */
   PetscCall(VecGetArray(s->attach_limit, &la));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
   for (j = ys; j < ys + ym; j++)
@@ -498,6 +594,12 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   gys = cc->gys;
   gym = cc->gym;
+  if (cc->cache && cc->cache_set != s->set_version) { /* a new set: a new front */
+    for (k = 0; k < s->nlocal; k++) cc->slot[k] = -1;
+    cc->nentry    = 0;
+    cc->nmember   = 0;
+    cc->cache_set = s->set_version;
+  }
 
   /* pass 1: G = -p delta / 2 on the front, the points of the set with an open 4-neighbour. When
      the front lets go, the edge moves by one element towards its open side: on a straight edge
@@ -517,6 +619,18 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       PetscInt        dir[4], nopen = 0;
       Ga[k] = NAN;
       if (!s->in_set[k]) continue;
+      if (cc->cache && cc->slot[k] == -2) continue; /* not on the front */
+      if (cc->cache && cc->slot[k] >= 0) { /* the open neighbours closest to the normal, known */
+        const FrontEntry *e = &cc->entry[cc->slot[k]];
+        for (PetscInt m = 0; m < e->ncand; m++) {
+          const PetscInt  bb = gys + e->cand[m] / g->Nx, aa = e->cand[m] % g->Nx;
+          const PetscReal hn = PetscRealPart(hl[bb][aa]), dn = (hn >= PETSC_INFINITY ? hi : hn) - s->d + PetscRealPart(ul[bb][aa]);
+          if (m == 0 || dn < open) open = dn;
+        }
+        Ga[k] = ti * open / 2.0;
+        if (decision) E = PetscMax(E, (PetscAbsReal(ti) * gerr + PetscAbsReal(open) * perr + perr * gerr) / 2.0);
+        continue;
+      }
       for (PetscInt n = 0; n < 4; n++) { /* the open 4-neighbours and their openings */
         PetscReal un, hn;
         if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checks the rows */
@@ -526,7 +640,10 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
         dir[nopen]     = n;
         delta[nopen++] = (hn >= PETSC_INFINITY ? hi : hn) - s->d + un;
       }
-      if (!nopen) continue; /* not on the front */
+      if (!nopen) { /* not on the front */
+        if (cc->cache) cc->slot[k] = -2;
+        continue;
+      }
       PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
       for (PetscInt m = 0; m < nopen; m++) {
         const PetscReal along = di[dir[m]] * normal[0] + dj[dir[m]] * normal[1];
@@ -534,6 +651,24 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
           best = along;
           open = delta[m];
         }
+      }
+      if (cc->cache) { /* its entry: the open neighbours along the normal as far as the best */
+        FrontEntry *e;
+        if (cc->nentry == cc->capentry) {
+          cc->capentry = PetscMax(256, 2 * cc->capentry);
+          PetscCall(PetscRealloc(cc->capentry * sizeof(FrontEntry), &cc->entry));
+        }
+        cc->slot[k] = cc->nentry;
+        e           = &cc->entry[cc->nentry++];
+        e->ncand    = 0;
+        e->n16 = e->nR = -1;
+        e->w16 = e->wR = 0;
+        e->kappa       = PETSC_MAX_REAL;
+        for (PetscInt m = 0; m < nopen; m++)
+          if (di[dir[m]] * normal[0] + dj[dir[m]] * normal[1] == best) {
+            PetscCheck(Neighbour(g, wrap, gys, gym, i, j, di[dir[m]], dj[dir[m]], &a, &b), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: an open neighbour outside the fetched rows");
+            e->cand[e->ncand++] = (b - gys) * g->Nx + a;
+          }
       }
       Ga[k] = ti * open / 2.0;
       if (decision) E = PetscMax(E, (PetscAbsReal(ti) * gerr + PetscAbsReal(open) * perr + perr * gerr) / 2.0);
@@ -547,7 +682,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   /* pass 2: the mean release rate of the front points within each point's window, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
   PetscCall(GetRows(cc, &cc->Gf, &Gl));
-  PetscCall(FrontLinks(s, cc, wrap, Gl));
+  if (!cc->cache) PetscCall(FrontLinks(s, cc, wrap, Gl)); /* else when a walk first needs them */
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (j = ys; j < ys + ym; j++)
     for (i = 0; i < g->Nx; i++) {
@@ -557,7 +692,10 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       PetscBool       lets_go;
       if (!s->in_set[k]) continue;
       /* the release-rate rule applies to front points in tension, with adhesion */
-      if (p < perr && Sigma > 0 && !IsNaN(PetscRealPart(Gl[j][i]))) PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
+      if (p < perr && Sigma > 0 && !IsNaN(PetscRealPart(Gl[j][i]))) {
+        if (cc->cache) PetscCall(CachedWindowMean(s, cc, wrap, Gl, i, j, k, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
+        else PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
+      }
       if (decision) {
         /* each rule's decision for p*: made (true or false), or in doubt with the factor by which
            the bounds must shrink to make it */
@@ -644,6 +782,10 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(PetscFree2(cc->seen, cc->queue));
   PetscCall(PetscFree2(cc->col, cc->row));
   PetscCall(PetscFree(cc->links));
+  PetscCall(PetscFree(cc->slot));
+  PetscCall(PetscFree(cc->entry));
+  PetscCall(PetscFree(cc->member));
+  PetscCall(PetscFree(cc->weight));
   PetscCall(PetscFree(s->crdata));
   PetscFunctionReturn(0);
 }

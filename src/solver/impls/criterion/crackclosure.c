@@ -105,8 +105,8 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   /* its certified stop saves KSP iterations but costs more than it saves (docs/performance.md) */
   s->crops.decide = s->criterion_certify ? Decide_CrackClosure : NULL;
   /* the certified stop evaluates a set at several iterates: keep its front's walks (a PetscInt a
-     point, and about 0.5 kB a front point) */
-  cc->cache     = s->criterion_certify;
+     point, and about 1 kB a front point: some 90 members of 12 B within the radius) */
+  cc->cache     = (PetscBool)(s->criterion_certify && s->certify);
   cc->cache_set = -1;
   cc->links_set = -1;
   if (cc->cache) PetscCall(PetscMalloc1(s->nlocal + 1, &cc->slot));

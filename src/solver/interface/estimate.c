@@ -12,11 +12,10 @@
    front's links over the rows each rank looks at (one PetscInt), and per rank the rows other
    ranks own among those (three buffers of u, h and G, and the links): at most 2 max(3, ceil(R))
    rows of Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted
-   all the same); -adh_attach griffith its limits
-   (8) and a fourth buffer, of p; -adh_criterion_certify the slots of its front's cache (one
-   PetscInt; its entries, about 1 kB a front point, go with the front, not the grid, and are not
-   counted). Each rank also holds about 50 MB of
-   MPI, PETSc and FFTW. */
+   all the same); -adh_attach griffith its limits (8) and a fourth buffer, of p;
+   -adh_criterion_certify the slots of its front's cache (one PetscInt; its entries, about 1 kB a
+   front point, go with the front, not the grid, and are not counted). Each rank also holds about
+   50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solver/solverimpl.h"
 

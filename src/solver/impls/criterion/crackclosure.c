@@ -102,7 +102,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   if (cc->fetch) PetscFunctionReturn(0);
   cc->radius     = s->criterion_radius;
   cc->radius_max = PetscMax(s->criterion_radius, s->criterion_radius_max);
-  /* its certified stop saves KSP iterations but costs more than it saves (docs/performance.md) */
+  /* its certified stop: the same sets for fewer FFT pairs, about the default's time (docs/performance.md) */
   s->crops.decide = s->criterion_certify ? Decide_CrackClosure : NULL;
   /* the certified stop evaluates a set at several iterates: keep its front's walks (a PetscInt a
      point, and about 1 kB a front point: some 90 members of 12 B within the radius) */
@@ -178,6 +178,13 @@ static PetscErrorCode RestoreRows(FetchedRows *f, const PetscScalar ***rows)
   PetscCall(VecRestoreArrayRead(f->ghost, &f->far));
   *rows = NULL;
   PetscFunctionReturn(0);
+}
+
+/* The opening of open point (hn, un) for a front point of profile hi at indentation d: where the
+   indenter has no face (hn infinite) it is measured from the front point's face extended flat. */
+static inline PetscReal Opening(PetscReal hn, PetscReal hi, PetscReal d, PetscReal un)
+{
+  return (hn >= PETSC_INFINITY ? hi : hn) - d + un;
 }
 
 /* NaN marks points without a value (the set's openings, G off the front); PETSc 3.18's
@@ -390,30 +397,6 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
 #define ADH_WINDOW_BAND_LOW  0.8
 #define ADH_WINDOW_BAND_HIGH 1.25
 
-/* The windowed mean of G around front point (i, j) (sum over weights): within the radius, and,
-   where that mean lies within [lo, hi], within the front's radius of curvature there if that is larger,
-   up to radius_max. A straight front (no curvature) takes radius_max. margin: where the window
-   depends on the mean over the radius, how far that mean lies from the band's nearer end (so a
-   certified decision knows whether the exact solution takes the same window), else
-   PETSC_MAX_REAL. */
-static PetscErrorCode WindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal lo, PetscReal hi, PetscReal *sum, PetscReal *weights, PetscReal *margin)
-{
-  const PetscBool adapts = (PetscBool)(cc->radius_max > cc->radius);
-  PetscReal       kappa  = PETSC_MAX_REAL, R, mean;
-
-  PetscFunctionBegin;
-  *margin = PETSC_MAX_REAL;
-  PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, cc->radius, sum, weights, adapts ? &kappa : NULL, PETSC_FALSE));
-  if (!adapts || kappa == PETSC_MAX_REAL || !(*weights > 0)) PetscFunctionReturn(0);
-  R = kappa > 1.0 / cc->radius_max ? 1.0 / kappa : cc->radius_max;
-  if (R <= cc->radius + 0.5) PetscFunctionReturn(0);
-  mean    = *sum / *weights;
-  *margin = PetscMin(mean - lo, hi - mean);
-  if (*margin < 0) *margin = -*margin; /* outside the band: the window of the radius */
-  else PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, R, sum, weights, NULL, PETSC_FALSE));
-  PetscFunctionReturn(0);
-}
-
 /* A cached walk's mean: the same sums in the same order as the walk's. */
 static inline void CachedSums(CrackClosure *cc, const PetscScalar **Gl, PetscInt w0, PetscInt n, PetscReal *sum, PetscReal *weights)
 {
@@ -426,41 +409,45 @@ static inline void CachedSums(CrackClosure *cc, const PetscScalar **Gl, PetscInt
   }
 }
 
-/* The front's links for the inner front of the current set, before a walk needs them. */
-static PetscErrorCode EnsureInnerLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl);
-
-/* WindowMean through the front's cache: each walk once per set (recorded on first use), then
-   its members' sums. Local point k's entry was made by pass 1. */
-static PetscErrorCode CachedWindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscInt k, PetscReal lo, PetscReal hi, PetscReal *sum, PetscReal *weights, PetscReal *margin)
+/* One window's sums: from the front's cache where it holds the walk (w0, n; n < 0: not yet),
+   else the walk (over the links of the front Gl holds), recorded into the cache when there is
+   one (w0, n not NULL). */
+static PetscErrorCode Walk(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, PetscReal radius, PetscInt *w0, PetscInt *n, PetscReal *sum, PetscReal *weights, PetscReal *curvature)
 {
-  const PetscBool adapts = (PetscBool)(cc->radius_max > cc->radius);
-  FrontEntry     *e;
-  PetscReal       R, mean;
+  PetscFunctionBegin;
+  if (n && *n >= 0) {
+    CachedSums(cc, Gl, *w0, *n, sum, weights);
+    PetscFunctionReturn(0);
+  }
+  if (n) *w0 = cc->nmember;
+  PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, radius, sum, weights, curvature, (PetscBool)(n != NULL)));
+  if (n) *n = cc->nmember - *w0;
+  PetscFunctionReturn(0);
+}
+
+/* The windowed mean of G around front point (i, j) (sum over weights): within the radius, and,
+   where that mean lies within [lo, hi], within the front's radius of curvature there if that is larger,
+   up to radius_max. A straight front (no curvature) takes radius_max. margin: where the window
+   depends on the mean over the radius, how far that mean lies from the band's nearer end (so a
+   certified decision knows whether the exact solution takes the same window), else
+   PETSC_MAX_REAL. e: the point's entry in the front's cache (NULL: none), whose walks and
+   curvature are made on first use and read after. */
+static PetscErrorCode WindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, FrontEntry *e, PetscReal lo, PetscReal hi, PetscReal *sum, PetscReal *weights, PetscReal *margin)
+{
+  const PetscBool adapts = (PetscBool)(cc->radius_max > cc->radius), walks = (PetscBool)(!e || e->n16 < 0);
+  PetscReal       kappa  = e ? e->kappa : PETSC_MAX_REAL, R, mean;
 
   PetscFunctionBegin;
-  PetscCheck(cc->slot[k] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: a front point without its cache entry");
   *margin = PETSC_MAX_REAL;
-  e       = &cc->entry[cc->slot[k]];
-  if (e->n16 < 0) {
-    PetscReal kappa = PETSC_MAX_REAL;
-    PetscCall(EnsureInnerLinks(s, cc, wrap, Gl));
-    e->w16 = cc->nmember;
-    PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, cc->radius, sum, weights, adapts ? &kappa : NULL, PETSC_TRUE));
-    e->n16   = cc->nmember - e->w16;
-    e->kappa = kappa;
-  } else CachedSums(cc, Gl, e->w16, e->n16, sum, weights);
-  if (!adapts || e->kappa == PETSC_MAX_REAL || !(*weights > 0)) PetscFunctionReturn(0);
-  R = e->kappa > 1.0 / cc->radius_max ? 1.0 / e->kappa : cc->radius_max;
+  PetscCall(Walk(s, cc, wrap, Gl, i, j, cc->radius, e ? &e->w16 : NULL, e ? &e->n16 : NULL, sum, weights, adapts && walks ? &kappa : NULL));
+  if (e && walks) e->kappa = kappa;
+  if (!adapts || kappa == PETSC_MAX_REAL || !(*weights > 0)) PetscFunctionReturn(0);
+  R = kappa > 1.0 / cc->radius_max ? 1.0 / kappa : cc->radius_max;
   if (R <= cc->radius + 0.5) PetscFunctionReturn(0);
   mean    = *sum / *weights;
   *margin = PetscMin(mean - lo, hi - mean);
   if (*margin < 0) *margin = -*margin; /* outside the band: the window of the radius */
-  else if (e->nR < 0) {
-    PetscCall(EnsureInnerLinks(s, cc, wrap, Gl));
-    e->wR = cc->nmember;
-    PetscCall(FrontMean(s, cc, wrap, cc->gys, cc->gym, Gl, i, j, R, sum, weights, NULL, PETSC_TRUE));
-    e->nR = cc->nmember - e->wR;
-  } else CachedSums(cc, Gl, e->wR, e->nR, sum, weights);
+  else PetscCall(Walk(s, cc, wrap, Gl, i, j, R, e ? &e->wR : NULL, e ? &e->nR : NULL, sum, weights, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -534,7 +521,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
       PetscReal       sum, n, gap, margin;
       la[k] = Sigma * K00; /* reach */
       if (s->in_set[k] || IsNaN(PetscRealPart(Gl[j][i]))) continue;
-      PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
+      PetscCall(WindowMean(s, cc, wrap, Gl, i, j, NULL, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
       gap   = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
       la[k] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
     }
@@ -624,7 +611,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
         const FrontEntry *e = &cc->entry[cc->slot[k]];
         for (PetscInt m = 0; m < e->ncand; m++) {
           const PetscInt  bb = gys + e->cand[m] / g->Nx, aa = e->cand[m] % g->Nx;
-          const PetscReal hn = PetscRealPart(hl[bb][aa]), dn = (hn >= PETSC_INFINITY ? hi : hn) - s->d + PetscRealPart(ul[bb][aa]);
+          const PetscReal dn = Opening(PetscRealPart(hl[bb][aa]), hi, s->d, PetscRealPart(ul[bb][aa]));
           if (m == 0 || dn < open) open = dn;
         }
         Ga[k] = ti * open / 2.0;
@@ -638,7 +625,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
         if (IsNaN(un)) continue; /* in the set */
         hn             = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */
         dir[nopen]     = n;
-        delta[nopen++] = (hn >= PETSC_INFINITY ? hi : hn) - s->d + un;
+        delta[nopen++] = Opening(hn, hi, s->d, un);
       }
       if (!nopen) { /* not on the front */
         if (cc->cache) cc->slot[k] = -2;
@@ -682,7 +669,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   /* pass 2: the mean release rate of the front points within each point's window, against dgamma */
   if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
   PetscCall(GetRows(cc, &cc->Gf, &Gl));
-  if (!cc->cache) PetscCall(FrontLinks(s, cc, wrap, Gl)); /* else when a walk first needs them */
+  PetscCall(EnsureInnerLinks(s, cc, wrap, Gl)); /* the set's front decides them: once a set */
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (j = ys; j < ys + ym; j++)
     for (i = 0; i < g->Nx; i++) {
@@ -693,8 +680,8 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
       if (!s->in_set[k]) continue;
       /* the release-rate rule applies to front points in tension, with adhesion */
       if (p < perr && Sigma > 0 && !IsNaN(PetscRealPart(Gl[j][i]))) {
-        if (cc->cache) PetscCall(CachedWindowMean(s, cc, wrap, Gl, i, j, k, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
-        else PetscCall(WindowMean(s, cc, wrap, Gl, i, j, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
+        PetscCheck(!cc->cache || cc->slot[k] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: a front point without its cache entry");
+        PetscCall(WindowMean(s, cc, wrap, Gl, i, j, cc->cache ? &cc->entry[cc->slot[k]] : NULL, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
       }
       if (decision) {
         /* each rule's decision for p*: made (true or false), or in doubt with the factor by which

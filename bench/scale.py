@@ -1,0 +1,166 @@
+"""./run bench scale: the resolved adhesive rough path at a large grid, run to the end across kills.
+
+The surface and load of `./run rough` (examples/rough.opts: Hurst 0.8, rms slope 0.1, roll-off
+at 256 spacings, cut-off at 32, dgamma 0.209 E* h, the smallest asperities' JKR contact radius
+about 20 spacings: the adhesion is resolved) on an N x N periodic cell: with the roll-off kept at
+256 spacings, the cell holds (N/256)^2 independent patches of the 256^2 main job's statistics.
+The path: from first touch with adhesion (d = 0) to the indentation d1 at which a quarter of the
+gap profile lies below it, back to 0 and on to -d1, 25 steps a leg, ending at pull-off, with the
+default criterion and attach rule (further adhbem options after --).
+
+Such a run takes hours. It runs in DIR (default bench-scale-N/ under the current directory)
+with a checkpoint after every state: calling the bench again with the same DIR goes on from the
+last checkpoint (-adh_restart), so a run killed by a time limit or a new session loses at most
+the state in progress. Each run segment's CPU time (the ranks', getrusage of mpirun's children),
+wall time and peak memory (-memory_view) are kept in DIR/segments.json.
+
+At the end, and with --report at any time (from the results so far, FILE.csv.part while it
+runs), a table per leg: states, set updates, KSP iterations, FFT pairs, the solver's seconds
+and seconds per FFT pair; the quantities of the path (largest tension, force and contact area at
+the deepest state, loop energy); and the segments' CPU, wall and peak memory per grid point.
+
+    ./run bench scale [--n 4096] [--np 2] [--dir DIR] [--steps 25] [--report] [-- OPTIONS]
+"""
+import argparse
+import json
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
+
+
+def _loop_energy():
+    """tools/rough.py's loop_energy (by path: bench/ has a rough.py of its own; numpy only at import)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("tools_rough", os.path.join(ROOT, "tools", "rough.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.loop_energy
+
+
+loop_energy = _loop_energy()
+
+PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)")
+SURFACE = ["-adh_boundary", "periodic", "-adh_indenter", "rough", "-adh_hurst", "0.8", "-adh_rms_slope", "0.1",
+           "-adh_rolloff_wavelength", "256", "-adh_cutoff_wavelength", "32", "-adh_seed", "1"]
+
+
+def depth(n, quantile=0.25):
+    """d1: the indentation at which `quantile` of the gap profile lies below it (in a process of its
+    own, as this one must not initialise MPI)."""
+    code = ("import numpy as np, adhbem\n"
+            f"z, _ = adhbem.rough_surface({n}, size={float(n)}, hurst=0.8, rms_slope=0.1,"
+            " rolloff_wavelength=256.0, cutoff_wavelength=32.0, seed=1)\n"
+            "z = z.getArray()\n"
+            f"print(repr(float(np.quantile(z.max() - z, {quantile}))))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return float(out.stdout.split()[-1])
+
+
+def curve(results):
+    """The curve recorded so far: FILE.csv, or FILE.csv.part while the run goes on (None if neither)."""
+    for path in (results[:-3] + ".csv", results[:-3] + ".csv.part"):
+        if os.path.exists(path) and os.path.getsize(path):
+            c = np.genfromtxt(path, delimiter=",", names=True)
+            return np.atleast_1d(c)
+    return None
+
+
+def segment(a, d1, results, checkpoint, record):
+    """One run of build/adhbem, from the checkpoint if there is one; returns its exit code."""
+    cmd = ["mpirun", "--oversubscribe", "-n", str(a.np), EXE, "-adh_n", str(a.n), "-adh_size", str(a.n)] + SURFACE + [
+        "-adh_gamma", repr(a.gamma), "-adh_start", "adhesive", "-adh_path", f"0,{d1!r},0,{-d1!r}",
+        "-adh_steps", str(a.steps), "-adh_output", results, "-adh_checkpoint", checkpoint,
+        "-adh_monitor", "-memory_view"] + (["-adh_restart", checkpoint] if os.path.exists(checkpoint) else []) + a.extra
+    print(" ".join(cmd), flush=True)
+    r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.time()
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    log = []
+    for line in p.stdout:  # the monitor's lines as they come, and kept for the memory line
+        sys.stdout.write(line)
+        sys.stdout.flush()
+        log.append(line)
+    rc = p.wait()
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    peak = PEAK.search("".join(log))
+    segs = json.load(open(record)) if os.path.exists(record) else []
+    segs.append(dict(started=time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t0)), wall=time.time() - t0,
+                     cpu=(r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime),
+                     peak=float(peak.group(1)) if peak else None, exit=rc, restart="-adh_restart" in cmd))
+    with open(record, "w") as f:
+        json.dump(segs, f, indent=1)
+    return rc
+
+
+def report(a, d1, results, record):
+    c = curve(results)
+    if c is None:
+        print("no state recorded yet")
+        return
+    n2 = a.n * a.n
+    d = c["d"]
+    turn = int(np.argmax(d))
+    back = turn + int(np.argmin(np.abs(d[turn:]))) if len(d) > turn + 1 else len(d) - 1
+    legs = [("approach 0 -> d1", 0, turn + 1), ("unloading d1 -> 0", turn + 1, back + 1),
+            ("retraction 0 -> pull-off", back + 1, len(d))]
+    print(f"\n{a.n}^2 periodic cell, resolved adhesive rough path (dgamma {a.gamma:g}, d1 = {d1:.4g}),"
+          f" {len(d)} states recorded" + ("" if os.path.exists(results) else " (the run is not finished)"))
+    print(f"| leg | states | set updates | KSP | FFT pairs | solve s | ms / FFT pair |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for name, i, j in legs + [("all", 0, len(d))]:
+        if j <= i:
+            continue
+        s = c[i:j]
+        pairs = int(s["fft_pairs"].sum())
+        print(f"| {name} | {j - i} | {int(s['outer_iterations'].sum())} | {int(s['ksp_iterations'].sum())} | {pairs}"
+              f" | {s['seconds'].sum():.0f} | {1e3 * s['seconds'].sum() / max(pairs, 1):.1f} |")
+    F = c["force"]
+    print(f"largest tension {max(0.0, -F.min()):.6g}, at the deepest state force {F[turn]:.6g} and contact area"
+          f" {c['area'][turn] / n2:.4f}, loop energy {loop_energy(d, F):.6g}")
+    if os.path.exists(record):
+        segs = json.load(open(record))
+        peaks = [s["peak"] for s in segs if s["peak"]]
+        print(f"{len(segs)} segments: {sum(s['cpu'] for s in segs):.0f} s CPU of the ranks,"
+              f" {sum(s['wall'] for s in segs):.0f} s wall" +
+              (f", peak memory {max(peaks) / 1e6:.0f} MB ({max(peaks) / n2:.0f} B a grid point)" if peaks else ""))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, default=4096, help="grid points per side")
+    ap.add_argument("--np", type=int, default=2, help="MPI ranks")
+    ap.add_argument("--steps", type=int, default=25, help="steps a leg")
+    ap.add_argument("--gamma", type=float, default=0.209, help="work of adhesion (E* = 1, spacing 1)")
+    ap.add_argument("--dir", help="where the results and the checkpoint go (default bench-scale-N)")
+    ap.add_argument("--report", action="store_true", help="only the table of what is recorded so far")
+    ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
+    a = ap.parse_args()
+    if a.n % 256:
+        sys.exit(f"bench scale: --n {a.n} must be a multiple of 256 (the roll-off wavelength)")
+    a.dir = os.path.abspath(a.dir or f"bench-scale-{a.n}")
+    os.makedirs(a.dir, exist_ok=True)
+    results, checkpoint = os.path.join(a.dir, "rough.h5"), os.path.join(a.dir, "rough.ck.h5")
+    record = os.path.join(a.dir, "segments.json")
+    meta = os.path.join(a.dir, "d1.json")
+    if os.path.exists(meta):  # d1 of the surface, computed once per directory
+        d1 = json.load(open(meta))["d1"]
+    else:
+        d1 = depth(a.n)
+        json.dump(dict(d1=d1, n=a.n), open(meta, "w"))
+    if not a.report and not os.path.exists(results):
+        rc = segment(a, d1, results, checkpoint, record)
+        if rc:
+            report(a, d1, results, record)
+            sys.exit(f"bench scale: the run stopped (exit {rc}); the same command goes on from {checkpoint}")
+    report(a, d1, results, record)
+
+
+if __name__ == "__main__":
+    main()

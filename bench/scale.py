@@ -74,6 +74,15 @@ def curve(results):
     return None
 
 
+def finished(results):
+    """Whether the path ran to its end: a stopped run closes its results too, with complete = 0."""
+    if not os.path.exists(results):
+        return False
+    import h5py
+    with h5py.File(results, "r") as f:
+        return bool(f.attrs.get("complete", 0))
+
+
 def segment(a, d1, results, checkpoint, record):
     """One run of build/adhbem, from the checkpoint if there is one; returns its exit code."""
     cmd = ["mpirun", "--oversubscribe", "-n", str(a.np), EXE, "-adh_n", str(a.n), "-adh_size", str(a.n)] + SURFACE + [
@@ -112,7 +121,7 @@ def report(a, d1, results, record):
     legs = [("approach 0 -> d1", 0, turn + 1), ("unloading d1 -> 0", turn + 1, back + 1),
             ("retraction 0 -> pull-off", back + 1, len(d))]
     print(f"\n{a.n}^2 periodic cell, resolved adhesive rough path (dgamma {a.gamma:g}, d1 = {d1:.4g}),"
-          f" {len(d)} states recorded" + ("" if os.path.exists(results) else " (the run is not finished)"))
+          f" {len(d)} states recorded" + ("" if finished(results) else " (the run is not finished)"))
     print(f"| leg | states | set updates | KSP | FFT pairs | solve s | ms / FFT pair |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for name, i, j in legs + [("all", 0, len(d))]:
         if j <= i:
@@ -154,7 +163,7 @@ def main():
     else:
         d1 = depth(a.n)
         json.dump(dict(d1=d1, n=a.n), open(meta, "w"))
-    if not a.report and not os.path.exists(results):
+    if not a.report and not finished(results):
         rc = segment(a, d1, results, checkpoint, record)
         if rc:
             report(a, d1, results, record)

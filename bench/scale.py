@@ -69,8 +69,8 @@ def curve(results):
     """The curve recorded so far: FILE.csv, or FILE.csv.part while the run goes on (None if neither)."""
     for path in (results[:-3] + ".csv", results[:-3] + ".csv.part"):
         if os.path.exists(path) and os.path.getsize(path):
-            c = np.genfromtxt(path, delimiter=",", names=True)
-            return np.atleast_1d(c)
+            c = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+            return c if c.size and c.dtype.names else None
     return None
 
 

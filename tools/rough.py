@@ -1,9 +1,9 @@
 """./run rough: adhesive contact of a self-affine rough surface, approach then retraction.
 
 A periodic cell of N x N grid points (spacing 1, E* = 1) with a random self-affine surface
-(Hurst 0.8, rms slope 0.1, roll-off at the cell, cut-off at 64 grid spacings) is pressed in from
+(Hurst 0.8, rms slope 0.1, roll-off at the cell, cut-off at 32 grid spacings) is pressed in from
 first touch (d = 0) to the indentation at which a quarter of the gap profile lies below it, then
-pulled back to d = 0 and on until it comes off, once with adhesion (dgamma = 0.05 E* h) and once
+pulled back to d = 0 and on until it comes off, once with adhesion (dgamma = 0.209 E* h) and once
 without, with the default detachment criterion (crack-closure) and attach rule (griffith). Writes
 results/rough.h5 and .csv (with adhesion), results/rough_nonadhesive.h5 and .csv,
 results/rough.png, and prints a short table and how well the grid resolves the adhesion.

@@ -1,28 +1,31 @@
-"""./run bench scale: the resolved adhesive rough path at a large grid, run to the end across kills.
+"""./run bench scale: a resolved adhesive rough path at a large grid, run to the end across kills.
 
-The surface and load of `./run rough` (examples/rough.opts: Hurst 0.8, rms slope 0.1, roll-off
-at 256 spacings, cut-off at 32, dgamma 0.209 E* h, the smallest asperities' JKR contact radius
-about 20 spacings: the adhesion is resolved) on an N x N periodic cell: with the roll-off kept at
-256 spacings, the cell holds (N/256)^2 independent patches of the 256^2 main job's statistics.
-The path: from first touch with adhesion (d = 0) to the indentation d1 at which a quarter of the
-gap profile lies below it, back to 0 and on to -d1, 25 steps a leg, ending at pull-off, with the
-default criterion and attach rule (further adhbem options after --).
+A periodic N x N cell (spacing 1, E* = 1) of a self-affine surface (Hurst 0.8, rms slope 0.1,
+roll-off at --rolloff 256 spacings, cut-off at --cutoff 64) with dgamma --gamma 0.065 E* h: the
+smallest asperities' JKR contact radius at pull-off is about 20 spacings (the run's last lines say
+so), a_c = 5/16 of the cut-off wavelength as in `./run bench convergence --config moderate`. With
+the roll-off kept at 256 spacings, the cell holds (N/256)^2 independent patches of the same
+statistics. The path: from first touch with adhesion (d = 0) to the indentation d1 at which a
+quarter of the gap profile lies below it, back to 0 and on to -d1, 25 steps a leg, ending at
+pull-off, with the default criterion and attach rule (further adhbem options after --).
+`--cutoff 32 --gamma 0.209` is ./run rough's stickier surface (a_c = 5/8 of the cut-off
+wavelength): there the contact zips across the cell at first touch, so its cost per state grows
+with the cell's side (docs/performance.md).
 
 Such a run takes hours. It runs in DIR (default bench-scale-N/ under the current directory)
 with a checkpoint after every state: calling the bench again with the same DIR goes on from the
 last checkpoint (-adh_restart), so a run killed by a time limit or a new session loses at most
-the state in progress. Each run segment's CPU time (the ranks', getrusage of mpirun's children),
-wall time and peak memory (-memory_view) are kept in DIR/segments.json.
+the state in progress. The bench's options are kept in DIR/bench.json, and a call with other
+ones is refused (but for --np: a segment may run on other ranks). Each run segment's CPU time (the ranks', getrusage of mpirun's children), wall
+time and peak memory (-memory_view) are kept in DIR/segments.json.
 
 At the end, and with --report at any time (from the results so far, FILE.csv.part while it
 runs), a table per leg: states, set updates, KSP iterations, FFT pairs, the solver's seconds
 and seconds per FFT pair; the quantities of the path (largest tension, force and contact area at
 the deepest state, loop energy); and the segments' CPU, wall and peak memory per grid point.
 
-    ./run bench scale [--n 4096] [--np 2] [--dir DIR] [--steps 25] [--rolloff 256] [--report] [-- OPTIONS]
-
-(--rolloff: the roll-off wavelength in spacings, 256 by default; the tests run the bench on a 128^2
-cell of one roll-off wavelength.)
+    ./run bench scale [--n 4096] [--np 2] [--dir DIR] [--steps 25] [--gamma 0.065] [--cutoff 64]
+        [--rolloff 256] [--report] [-- OPTIONS]
 """
 import argparse
 import json
@@ -56,15 +59,15 @@ PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\
 
 def surface(a):
     return ["-adh_boundary", "periodic", "-adh_indenter", "rough", "-adh_hurst", "0.8", "-adh_rms_slope", "0.1",
-            "-adh_rolloff_wavelength", repr(a.rolloff), "-adh_cutoff_wavelength", "32", "-adh_seed", "1"]
+            "-adh_rolloff_wavelength", repr(a.rolloff), "-adh_cutoff_wavelength", repr(a.cutoff), "-adh_seed", "1"]
 
 
-def depth(n, rolloff, quantile=0.25):
+def depth(n, rolloff, cutoff, quantile=0.25):
     """d1: the indentation at which `quantile` of the gap profile lies below it (in a process of its
     own, as this one must not initialise MPI)."""
     code = ("import numpy as np, adhbem\n"
             f"z, _ = adhbem.rough_surface({n}, size={float(n)}, hurst=0.8, rms_slope=0.1,"
-            f" rolloff_wavelength={rolloff!r}, cutoff_wavelength=32.0, seed=1)\n"
+            f" rolloff_wavelength={rolloff!r}, cutoff_wavelength={cutoff!r}, seed=1)\n"
             "z = z.getArray()\n"
             f"print(repr(float(np.quantile(z.max() - z, {quantile}))))\n")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [os.path.join(ROOT, "python"), os.environ.get("PYTHONPATH")])))
@@ -110,7 +113,7 @@ def segment(a, d1, results, checkpoint, record):
     segs = json.load(open(record)) if os.path.exists(record) else []
     segs.append(dict(started=time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t0)), wall=time.time() - t0,
                      cpu=(r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime),
-                     peak=float(peak.group(1)) if peak else None, exit=rc, restart="-adh_restart" in cmd))
+                     peak=float(peak.group(1)) if peak else None, np=a.np, exit=rc, restart="-adh_restart" in cmd))
     with open(record, "w") as f:
         json.dump(segs, f, indent=1)
     return rc
@@ -153,7 +156,8 @@ def main():
     ap.add_argument("--n", type=int, default=4096, help="grid points per side")
     ap.add_argument("--np", type=int, default=2, help="MPI ranks")
     ap.add_argument("--steps", type=int, default=25, help="steps a leg")
-    ap.add_argument("--gamma", type=float, default=0.209, help="work of adhesion (E* = 1, spacing 1)")
+    ap.add_argument("--gamma", type=float, default=0.065, help="work of adhesion (E* = 1, spacing 1)")
+    ap.add_argument("--cutoff", type=float, default=64.0, help="cut-off wavelength in grid spacings")
     ap.add_argument("--rolloff", type=float, default=256.0, help="roll-off wavelength in grid spacings")
     ap.add_argument("--dir", help="where the results and the checkpoint go (default bench-scale-N)")
     ap.add_argument("--report", action="store_true", help="only the table of what is recorded so far")
@@ -165,12 +169,16 @@ def main():
     os.makedirs(a.dir, exist_ok=True)
     results, checkpoint = os.path.join(a.dir, "rough.h5"), os.path.join(a.dir, "rough.ck.h5")
     record = os.path.join(a.dir, "segments.json")
-    meta = os.path.join(a.dir, "d1.json")
-    if os.path.exists(meta):  # d1 of the surface, computed once per directory
-        d1 = json.load(open(meta))["d1"]
+    meta = os.path.join(a.dir, "bench.json")
+    mine = dict(n=a.n, steps=a.steps, gamma=a.gamma, cutoff=a.cutoff, rolloff=a.rolloff, extra=a.extra)
+    if os.path.exists(meta):  # the options and d1 of the run in DIR
+        kept = json.load(open(meta))
+        d1 = kept.pop("d1")
+        if kept != mine:
+            sys.exit(f"bench scale: {a.dir} holds a run with other options ({kept}); give another --dir")
     else:
-        d1 = depth(a.n, a.rolloff)
-        json.dump(dict(d1=d1, n=a.n, rolloff=a.rolloff), open(meta, "w"))
+        d1 = depth(a.n, a.rolloff, a.cutoff)
+        json.dump(dict(mine, d1=d1), open(meta, "w"))
     if not a.report and not finished(results):
         rc = segment(a, d1, results, checkpoint, record)
         if rc:

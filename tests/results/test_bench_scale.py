@@ -1,7 +1,8 @@
 """./run bench scale runs a path of hours to its end across kills: stopped by SIGTERM to its mpirun
 (a batch system's time limit), the same command goes on from the last checkpoint, to the curve
-of an uninterrupted run; called once more it runs nothing. On a 128^2 cell of one roll-off
-wavelength, 2 steps a leg (7 states, a few seconds a run)."""
+of an uninterrupted run; called once more it runs nothing, and with other options it is refused.
+On a 128^2 cell of one roll-off wavelength, ./run rough's surface and dgamma, 2 steps a leg (7
+states, a few seconds a run)."""
 import json
 import os
 import signal
@@ -16,6 +17,7 @@ from adhbem import PETSc
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH = [sys.executable, os.path.join(ROOT, "bench", "scale.py"), "--n", "128", "--rolloff", "128", "--steps", "2",
+         "--cutoff", "32", "--gamma", "0.209",
          "--np", "2"]
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
@@ -91,3 +93,6 @@ def test_bench_scale_goes_on_after_a_kill(tmp_path):
     done = bench(run)  # finished: the table again, no run
     assert done.returncode == 0 and "mpirun" not in done.stdout and "| all | 7 |" in done.stdout
     assert len(segments(run)) == 2
+
+    other = bench(run, "--gamma", "0.1")
+    assert other.returncode != 0 and "holds a run with other options" in other.stderr

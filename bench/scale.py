@@ -16,8 +16,9 @@ Such a run takes hours. It runs in DIR (default bench-scale-N/ under the current
 with a checkpoint after every state: calling the bench again with the same DIR goes on from the
 last checkpoint (-adh_restart), so a run killed by a time limit or a new session loses at most
 the state in progress. The bench's options are kept in DIR/bench.json, and a call with other
-ones is refused (but for --np: a segment may run on other ranks). Each run segment's CPU time (the ranks', getrusage of mpirun's children), wall
-time and peak memory (-memory_view) are kept in DIR/segments.json.
+ones is refused (but for --np: a segment may run on other ranks). Each run segment's CPU time
+(the ranks', getrusage of mpirun's children, or sampled from /proc when the ranks are killed),
+wall time and peak memory (-memory_view) are kept in DIR/segments.json.
 
 At the end, and with --report at any time (from the results so far, FILE.csv.part while it
 runs), a table per leg: states, set updates, KSP iterations, FFT pairs, the solver's seconds
@@ -93,6 +94,23 @@ def finished(results):
         return bool(f.attrs.get("complete", 0))
 
 
+def ranks_cpu(mpirun):
+    """CPU seconds of mpirun's adhbem children so far, from /proc: a rank killed with mpirun is not
+    waited for, and its time never reaches getrusage(RUSAGE_CHILDREN)."""
+    total, tick = 0.0, os.sysconf("SC_CLK_TCK")
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            stat = open(f"/proc/{entry}/stat").read()
+        except OSError:
+            continue
+        name, rest = stat[stat.index("(") + 1:stat.rindex(")")], stat[stat.rindex(")") + 2:].split()
+        if name == "adhbem" and int(rest[1]) == mpirun:
+            total += (int(rest[11]) + int(rest[12])) / tick  # utime, stime
+    return total
+
+
 def segment(a, d1, results, checkpoint, record):
     """One run of build/adhbem, from the checkpoint if there is one; returns its exit code."""
     cmd = ["mpirun", "--oversubscribe", "-n", str(a.np), EXE, "-adh_n", str(a.n), "-adh_size", str(a.n)] + surface(a) + [
@@ -102,17 +120,19 @@ def segment(a, d1, results, checkpoint, record):
     print(" ".join(cmd), flush=True)
     r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.time()
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    log = []
+    log, sampled, seen = [], 0.0, 0.0
     for line in p.stdout:  # the monitor's lines as they come, and kept for the memory line
         sys.stdout.write(line)
         sys.stdout.flush()
         log.append(line)
+        if time.time() - sampled > 1:
+            sampled, seen = time.time(), max(seen, ranks_cpu(p.pid))
     rc = p.wait()
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     peak = PEAK.search("".join(log))
     segs = json.load(open(record)) if os.path.exists(record) else []
     segs.append(dict(started=time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t0)), wall=time.time() - t0,
-                     cpu=(r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime),
+                     cpu=max(seen, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)),
                      peak=float(peak.group(1)) if peak else None, np=a.np, exit=rc, restart="-adh_restart" in cmd))
     with open(record, "w") as f:
         json.dump(segs, f, indent=1)

@@ -89,6 +89,7 @@ def test_bench_scale_goes_on_after_a_kill(tmp_path):
         np.testing.assert_array_equal(resumed[name], reference[name], err_msg=name)
     assert [s["restart"] for s in segments(run)] == [False, True]
     assert segments(run)[0]["exit"] != 0 and segments(run)[1]["exit"] == 0
+    assert segments(run)[0]["cpu"] > 0.2  # the killed ranks' time, not lost with them
 
     done = bench(run)  # finished: the table again, no run
     assert done.returncode == 0 and "mpirun" not in done.stdout and "| all | 7 |" in done.stdout

@@ -130,6 +130,12 @@ struct _n_AdhSolver {
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
   char     *left;             /* points that let go during the current step (they stay off: AttachLimit) */
+  PetscInt  cascade_apart;    /* -adh_cascade_apart D: points join in an update that lets others go, D spacings away from them (0: off) */
+  char     *gone;             /* with cascade_apart: the points let go in the current update, then those within D of them */
+  PetscInt  removed_now;      /* with cascade_apart: how many let go in the current update */
+  PetscSF   apart_sf;         /* with cascade_apart: the marks of the D rows beyond a rank's own (cascadeapart.c) */
+  PetscInt *apart_source, *apart_rows, *apart_count;
+  char     *apart_ghost, *apart_band;
   PetscInt  step_largest;     /* the largest set of the current step (points) */
   PetscInt  nlocal;
   AdhAttach attach;
@@ -248,10 +254,14 @@ static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscSc
 {
   s->in_set[k] = 0;
   s->left[k]   = 1;
+  if (s->gone) s->gone[k] = 1;
   pa[k]        = 0.0;
   if (xa) xa[k] = 0.0;
 }
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
 /* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;

@@ -83,3 +83,69 @@ def test_bad_cascade_rtol_is_refused(tmp_path, value):
                         "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
     assert r.returncode != 0 and "-adh_cascade_rtol must lie in [0, 1)" in r.stderr + r.stdout
     assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())
+
+
+# -adh_cascade_apart D: points may join in a set update that lets others go, D grid spacings away
+# from them (docs/performance.md: the work-precision table and the cost as the cell grows).
+ROUGH = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
+             hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8)
+
+
+def test_apart_cascade_on_the_jkr_sphere():
+    """a_c/h = 25: the largest tension and the curve as close to JKR as the exact cascade's (within
+    1.25 times its error and 0.2% of F_adh)."""
+    exact = jkr_unloading(80, 25.0)
+    apart = jkr_unloading(80, 25.0, cascade_apart=8)
+    say(f"\nJKR sphere a_c/h 25, exact cascade: largest tension {exact[0]:.4f} F_adh, RMS {exact[1]:.4f}, KSP {exact[2]};"
+        f" -adh_cascade_apart 8: {apart[0]:.4f}, RMS {apart[1]:.4f}, KSP {apart[2]}")
+    assert abs(apart[0] - 1) <= 1.25 * abs(exact[0] - 1) + 0.002
+    assert apart[1] <= 1.25 * exact[1] + 0.002
+
+
+def test_apart_cascade_on_a_rough_cell():
+    """Joins beside the updates that let points go take fewer set updates than the exact cascade;
+    with D beyond the cell (every point near any point let go) it is the exact cascade, state for
+    state: the marks reach across the periodic cell's edges."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    exact = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH).solve_path()
+    apart = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_apart=4, **ROUGH).solve_path()
+    wide = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_apart=24, **ROUGH).solve_path()
+    say(f"\nrough 48^2: set updates exact {int(exact['outer_iterations'].sum())}, apart 4 {int(apart['outer_iterations'].sum())},"
+        f" apart 24 {int(wide['outer_iterations'].sum())}")
+    assert apart["outer_iterations"].sum() < exact["outer_iterations"].sum()
+    for key in ("contact_points", "outer_iterations", "ksp_iterations"):
+        np.testing.assert_array_equal(wide[key], exact[key], err_msg=key)
+    np.testing.assert_allclose(wide["force"], exact["force"], rtol=0, atol=1e-12 * np.abs(exact["force"]).max())
+
+
+@pytest.mark.mpi
+@pytest.mark.ranks3
+@pytest.mark.parametrize("D", [4, 20])
+def test_apart_cascade_on_any_number_of_ranks(D):
+    """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
+    D = 20 reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps."""
+    world = adhbem.Solver(cascade_apart=D, **ROUGH).solve_path()
+    alone = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_apart=D, **ROUGH).solve_path()
+    mpi = PETSc.COMM_WORLD.tompi4py()
+    same = mpi.allreduce(int(np.array_equal(world["contact_points"], alone["contact_points"])
+                             and np.array_equal(world["ksp_iterations"], alone["ksp_iterations"])), op=_min())
+    rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
+    assert same == 1 and rel < 1e-10
+    assert np.all(world["detach_ratio"] <= 1 + 1e-9) and world["contact_points"].max() > 0
+
+
+@pytest.mark.parametrize("args, message", [
+    (["-adh_cascade_apart", "-1"], "-adh_cascade_apart must lie in [0, 64]"),
+    (["-adh_cascade_apart", "65"], "-adh_cascade_apart must lie in [0, 64]"),
+    (["-adh_cascade_apart", "8", "-adh_control", "force"], "-adh_cascade_apart: displacement control only"),
+])
+def test_bad_cascade_apart_is_refused(tmp_path, args, message):
+    import subprocess
+    from adhbem_build import EXE
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "1e-3", "-adh_path", "0.01,0", *args,
+                        "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
+    assert r.returncode != 0 and message in r.stderr + r.stdout
+    assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())

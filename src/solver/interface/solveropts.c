@@ -100,6 +100,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsInt("-adh_cascade_apart", "Points may join in a set update that lets others go, where they lie more than this many grid spacings from every point let go in it (0: joins only in an update that lets nothing go, the exact cascade)", "AdhSolver", s->cascade_apart, &s->cascade_apart, NULL));
   PetscCall(PetscOptionsReal("-adh_cascade_rtol", "Solves between set updates of a step stop at this relative residual, and the set is updated on their pressures (0: every solve to -adh_ksp_rtol); a set that stands on one is solved to -adh_ksp_rtol and tested again. Fewer KSP iterations; the sets along the way may differ from the exact cascade's", "AdhSolver", s->cascade_rtol, &s->cascade_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
@@ -113,6 +114,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->criterion_radius_max <= 128, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max must be at most 128 grid spacings, got %g", (double)s->criterion_radius_max);
   PetscCheck(s->criterion_radius_max >= s->criterion_radius, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max (%g) must be at least -adh_criterion_radius (%g)", (double)s->criterion_radius_max, (double)s->criterion_radius);
   PetscCheck(s->cascade_rtol >= 0 && s->cascade_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_rtol must lie in [0, 1), got %g", (double)s->cascade_rtol);
+  PetscCheck(s->cascade_apart >= 0 && s->cascade_apart <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_apart must lie in [0, 64] grid spacings, got %" PetscInt_FMT, s->cascade_apart);
+  PetscCheck(!(s->cascade_apart > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart: displacement control only (-adh_control displacement)");
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);

@@ -165,6 +165,10 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
+    if (s->cascade_apart > 0) {
+      PetscCall(PetscCalloc1(nlocal + 1, &s->gone));
+      PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+    }
     s->nlocal = nlocal;
     PetscCall(AdhSolverProfileChanged_Private(s));
 

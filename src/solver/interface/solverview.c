@@ -17,6 +17,7 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.decide && !s->force_control ? "on" : "off"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
+  if (s->cascade_apart > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "points join in set updates that let others go, %" PetscInt_FMT " grid spacings from them\n", s->cascade_apart));
   if (s->cascade_rtol > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "solves between set updates to a relative residual %g, the last of a step to the KSP's\n", (double)s->cascade_rtol));
   if (s->crops.setup && s->criterion_radius_max > s->criterion_radius) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings (near the detachment within the edge's radius of curvature, up to %g); attach rule %s\n", s->criterion_type, (double)s->criterion_radius, (double)s->criterion_radius_max, AdhAttaches[s->attach]));
   else if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));

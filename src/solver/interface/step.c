@@ -422,7 +422,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
     }
   }
   for (k = 0; k < n; k++)
-    if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit)) {
+    if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit) && !(s->removed_now && s->gone[k])) {
       s->in_set[k] = 1;
       count++;
     }
@@ -434,8 +434,8 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
-  if (s->attach == ADH_ATTACH_GRIFFITH && s->npoints + *added > s->step_largest) { /* the points that let go may come back (AttachLimit) */
-    s->step_largest = s->npoints + *added;
+  if (s->attach == ADH_ATTACH_GRIFFITH && s->npoints - s->removed_now + *added > s->step_largest) { /* the points that let go may come back (AttachLimit) */
+    s->step_largest = s->npoints - s->removed_now + *added;
     PetscCall(PetscArrayzero(s->left, s->nlocal));
   }
   PetscFunctionReturn(0);

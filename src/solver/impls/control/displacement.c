@@ -28,6 +28,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
     s->solve_loose = PETSC_FALSE;
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
+    if (s->gone) PetscCall(PetscArrayzero(s->gone, s->nlocal));
     PetscCall(AdhSolverDetach_Private(s, &removed));
     if (!removed && loose) { /* the set stands on a loose solve: solve to the full tolerance and test again */
       loose = PETSC_FALSE;
@@ -37,6 +38,12 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
+    else if (s->gone) { /* -adh_cascade_apart: join away from the points let go */
+      PetscCall(AdhSolverMarkNearGone_Private(s));
+      s->removed_now = removed;
+      PetscCall(AdhSolverAttach_Private(s, NULL, &added));
+      s->removed_now = 0;
+    }
     s->joined_step += added;
     PetscCheck(!s->certified_attach || (!removed && added), s->comm, PETSC_ERR_PLIB, "Certified early stop for an attach test that changed nothing");
     if (removed || added) {

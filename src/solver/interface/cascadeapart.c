@@ -1,0 +1,119 @@
+/* -adh_cascade_apart D: a set update that lets points go lets points join too, where they lie more
+   than D grid spacings (in x and in y) from every point let go in it.
+
+   Why: in the exact cascade a point may join only in an update that lets no point go anywhere in
+   the cell. On a rough cell every region's joins then wait for every other region's detachments,
+   so the updates of a step add up over the regions instead of running side by side, and they grow
+   with the cell's side (the median step of `./run bench scale` doubles from 256^2 to 512^2). A
+   join far from the points let go sees the gap of the solved state there, which their going
+   barely changes; near them it waits, as in the exact cascade. The sets differ from the exact
+   cascade's, so the route is judged by its error against the converged reference
+   (docs/performance.md).
+
+   The points let go in the update are marked in s->gone (AdhSolverRemovePoint_Private); the marks
+   of the D rows beyond a rank's own come from the ranks that own them (a PetscSF of bytes), and a
+   running count along x, then along y, widens the marks by D. */
+#include "solver/solverimpl.h"
+
+/* The SF that brings each rank the marks of the D rows before and after its own (wrapped on a
+   periodic cell, none beyond a free grid's edge), and the source of each row of the widened band. */
+PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
+{
+  const AdhGrid g = s->grid;
+  const PetscInt D = s->cascade_apart, Nx = g->Nx, Ny = g->Ny;
+  const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  PetscInt      ys, ym, *ly, *start, nghost = 0, e, q, i;
+  PetscMPIInt   size;
+  PetscSFNode  *remote;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCall(AdhGridGetRowsPerRank(g, &ly));
+  PetscCall(PetscMalloc1(size + 1, &start));
+  start[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) start[r + 1] = start[r] + ly[r];
+  /* each row of the band ys - D .. ys + ym + D - 1: own row l (l), ghost row q (ym + q), or off
+     the grid (-1); a wrapped row met twice (a cell of few rows) is fetched once */
+  PetscCall(PetscMalloc2(ym + 2 * D, &s->apart_source, 2 * D + 1, &s->apart_rows));
+  for (e = 0; e < ym + 2 * D; e++) {
+    PetscInt r = ys - D + e;
+    if (wrap) r = (r % Ny + Ny) % Ny;
+    if (r < 0 || r >= Ny) s->apart_source[e] = -1;
+    else if (r >= ys && r < ys + ym) s->apart_source[e] = r - ys;
+    else {
+      for (q = 0; q < nghost && s->apart_rows[q] != r; q++) { }
+      if (q == nghost) s->apart_rows[nghost++] = r;
+      s->apart_source[e] = ym + q;
+    }
+  }
+  PetscCall(PetscMalloc1(nghost * Nx, &remote));
+  for (q = 0; q < nghost; q++) {
+    PetscMPIInt owner = 0;
+    while (start[owner + 1] <= s->apart_rows[q]) owner++;
+    for (i = 0; i < Nx; i++) {
+      remote[q * Nx + i].rank  = owner;
+      remote[q * Nx + i].index = (s->apart_rows[q] - start[owner]) * Nx + i;
+    }
+  }
+  PetscCall(PetscSFCreate(s->comm, &s->apart_sf));
+  PetscCall(PetscSFSetGraph(s->apart_sf, ym * Nx, nghost * Nx, NULL, PETSC_OWN_POINTER, remote, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(s->apart_sf));
+  PetscCall(PetscMalloc3(nghost * Nx + 1, &s->apart_ghost, (ym + 2 * D) * Nx, &s->apart_band, Nx, &s->apart_count));
+  PetscCall(PetscFree(ly));
+  PetscCall(PetscFree(start));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscSFDestroy(&s->apart_sf));
+  PetscCall(PetscFree2(s->apart_source, s->apart_rows));
+  PetscCall(PetscFree3(s->apart_ghost, s->apart_band, s->apart_count));
+  PetscFunctionReturn(0);
+}
+
+/* s->gone: the points let go in this update, widened by D; the attach test leaves them alone. */
+PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
+{
+  const AdhGrid   g = s->grid;
+  const PetscInt  D = s->cascade_apart, Nx = g->Nx;
+  const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  PetscInt        ys, ym, e, i, j;
+  char           *band = s->apart_band;
+  PetscInt       *count = s->apart_count;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridGetOwnership(g, &ys, &ym));
+  PetscCall(PetscSFBcastBegin(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
+  /* along x: each row of the band, a running count of the marks within D */
+  for (e = 0; e < ym + 2 * D; e++) {
+    const PetscInt src = s->apart_source[e];
+    const char    *row = src < 0 ? NULL : src < ym ? s->gone + src * Nx : s->apart_ghost + (src - ym) * Nx;
+    char          *out = band + e * Nx;
+    PetscInt       c   = 0;
+    if (!row) {
+      PetscCall(PetscArrayzero(out, Nx));
+      continue;
+    }
+#define AT(a) (wrap ? row[((a) % Nx + Nx) % Nx] : ((a) >= 0 && (a) < Nx ? row[a] : 0))
+    for (i = -D; i <= D; i++) c += AT(i);
+    for (i = 0; i < Nx; i++) {
+      out[i] = (char)(c > 0);
+      c += AT(i + D + 1) - AT(i - D);
+    }
+#undef AT
+  }
+  /* along y: for each own row j (band row j + D), the count over band rows j .. j + 2D */
+  PetscCall(PetscArrayzero(count, Nx));
+  for (e = 0; e <= 2 * D; e++)
+    for (i = 0; i < Nx; i++) count[i] += band[e * Nx + i];
+  for (j = 0; j < ym; j++) {
+    for (i = 0; i < Nx; i++) s->gone[j * Nx + i] = (char)(count[i] > 0);
+    if (j + 1 < ym)
+      for (i = 0; i < Nx; i++) count[i] += band[(j + 2 * D + 1) * Nx + i] - band[j * Nx + i];
+  }
+  PetscFunctionReturn(0);
+}

@@ -217,6 +217,7 @@ def main():
     ap.add_argument("--radius-max", type=float, help="crack-closure's largest averaging radius (-adh_criterion_radius_max;"
                     " equal to the radius: a fixed window)")
     ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
+    ap.add_argument("--cascade-apart", type=int, help="joins in set updates that let points go, this many spacings from them (-adh_cascade_apart)")
     ap.add_argument("--quick", action="store_true", help="the coarse grids only")
     ap.add_argument("--fine", action="store_true", help="also a third, finer grid for the sphere and the punch")
     args = ap.parse_args()
@@ -226,6 +227,8 @@ def main():
         OPTIONS["criterion_radius_max"] = args.radius_max
     if args.cascade_rtol is not None:
         OPTIONS["cascade_rtol"] = args.cascade_rtol
+    if args.cascade_apart is not None:
+        OPTIONS["cascade_apart"] = args.cascade_apart
     cases = [(wave, (256, 1, 0)), (wave, (512, 1, 0)), (wave, (2048, 1, 0)), (wave, (256, 2, 1)), (wave, (256, 1, 1)),
              (wave, (512, 4, 1)), (wave, (512, 3, 1)), (wave, (512, 5, 2)),
              (sphere, (25,)), (cone, (40,)), (punch, (17.5,))]

@@ -171,9 +171,12 @@ def main():
     ap.add_argument("--fine", type=float, help="load step from 0.9 p_max on, in units of p* (default: dp)")
     ap.add_argument("--angle45", action="store_true", help="also the wave at 45 degrees for the first two n: N x N cells, N = n sqrt 2 (lam/h = n)")
     ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
+    ap.add_argument("--cascade-apart", type=int, help="joins in set updates that let points go, this many spacings from them (-adh_cascade_apart)")
     args = ap.parse_args()
     if args.cascade_rtol is not None:
         OPTIONS["cascade_rtol"] = args.cascade_rtol
+    if args.cascade_apart is not None:
+        OPTIONS["cascade_apart"] = args.cascade_apart
     print(HEADER)
     print("(a/a_th: mean over the states with 0 <= p < 0.9 p_max; p_last, p_jump: the last partial and the first full-contact"
           " state's p / p_max; a_last: the last partial state's a / a_max; dg_eff: the median over those states of the"

@@ -94,10 +94,9 @@ def finished(results):
         return bool(f.attrs.get("complete", 0))
 
 
-def ranks_cpu(mpirun):
-    """CPU seconds of mpirun's adhbem children so far, from /proc: a rank killed with mpirun is not
-    waited for, and its time never reaches getrusage(RUSAGE_CHILDREN)."""
-    total, tick = 0.0, os.sysconf("SC_CLK_TCK")
+def children(parent, name):
+    """(pid, the fields of /proc/pid/stat after the name) of the processes called name whose parent
+    is parent."""
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
             continue
@@ -105,10 +104,16 @@ def ranks_cpu(mpirun):
             stat = open(f"/proc/{entry}/stat").read()
         except OSError:
             continue
-        name, rest = stat[stat.index("(") + 1:stat.rindex(")")], stat[stat.rindex(")") + 2:].split()
-        if name == "adhbem" and int(rest[1]) == mpirun:
-            total += (int(rest[11]) + int(rest[12])) / tick  # utime, stime
-    return total
+        fields = stat[stat.rindex(")") + 2:].split()
+        if stat[stat.index("(") + 1:stat.rindex(")")] == name and int(fields[1]) == parent:
+            yield int(entry), fields
+
+
+def ranks_cpu(mpirun):
+    """CPU seconds of mpirun's adhbem children so far, from /proc: a rank killed with mpirun is not
+    waited for, and its time never reaches getrusage(RUSAGE_CHILDREN)."""
+    tick = os.sysconf("SC_CLK_TCK")
+    return sum((int(f[11]) + int(f[12])) / tick for _, f in children(mpirun, "adhbem"))  # utime, stime
 
 
 def segment(a, d1, results, checkpoint, record):

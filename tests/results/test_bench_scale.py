@@ -22,6 +22,9 @@ BENCH = [sys.executable, os.path.join(ROOT, "bench", "scale.py"), "--n", "128", 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
 PLANNER = ["--", "-adh_fftw_planner", "estimate"]  # bit-reproducible transforms: the curves compare exactly
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+import scale  # noqa: E402  (the benchmark's helpers: numpy only at import)
+
 WAIT = 600  # seconds: the longest a run may take on a slow, shared machine
 
 
@@ -44,21 +47,6 @@ def segments(directory):
     return json.load(open(os.path.join(directory, "segments.json")))
 
 
-def mpirun_child(pid):
-    """The mpirun that process pid started (None while there is none)."""
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            stat = open(f"/proc/{entry}/stat").read()
-        except OSError:
-            continue
-        name, ppid = stat[stat.index("(") + 1:stat.rindex(")")], int(stat[stat.rindex(")") + 2:].split()[1])
-        if ppid == pid and name == "mpirun":
-            return int(entry)
-    return None
-
-
 def test_bench_scale_goes_on_after_a_kill(tmp_path):
     ref = bench(tmp_path / "ref")
     assert ref.returncode == 0, ref.stdout[-2000:] + ref.stderr[-2000:]
@@ -73,7 +61,8 @@ def test_bench_scale_goes_on_after_a_kill(tmp_path):
     while not (journal.exists() and len(journal.read_text().splitlines()) >= 3):
         assert p.poll() is None and time.time() - t0 < WAIT, "the run ended before its second state"
         time.sleep(0.05)
-    os.kill(mpirun_child(p.pid), signal.SIGTERM)
+    (mpirun, _), = scale.children(p.pid, "mpirun")
+    os.kill(mpirun, signal.SIGTERM)
     out = p.communicate(timeout=WAIT)[0]
     assert p.returncode != 0 and "the same command goes on from" in out, out[-2000:]
     assert "(the run is not finished)" in out

@@ -12,6 +12,9 @@ from adhbem import PETSc
 from common import _max, _min, gamma_for, jkr_scales, radius, say
 
 R = E = 1.0
+# an adhesive rough cell, approach and retraction
+ROUGH = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
+             hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8)
 
 
 def jkr_unloading(N, ratio, **options):
@@ -41,6 +44,19 @@ def test_loose_cascade_on_the_jkr_sphere():
     assert loose[2] < exact[2]
 
 
+def assert_same_on_any_ranks(opts):
+    """COMM_WORLD against COMM_SELF: the same contact counts and KSP iterations, forces to 1e-10;
+    every state holds (detach_ratio <= 1)."""
+    world = adhbem.Solver(**opts).solve_path()
+    alone = adhbem.Solver(comm=PETSc.COMM_SELF, **opts).solve_path()
+    mpi = PETSc.COMM_WORLD.tompi4py()
+    same = mpi.allreduce(int(np.array_equal(world["contact_points"], alone["contact_points"])
+                             and np.array_equal(world["ksp_iterations"], alone["ksp_iterations"])), op=_min())
+    rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
+    assert same == 1 and rel < 1e-10
+    assert np.all(world["detach_ratio"] <= 1 + 1e-9) and world["contact_points"].max() > 0
+
+
 def test_loose_cascade_under_force_control():
     """The JKR sphere's pull-off force under force control (bisected to 1e-3): as the exact
     cascade's within 0.5%."""
@@ -61,16 +77,7 @@ def test_loose_cascade_under_force_control():
 def test_loose_cascade_on_any_number_of_ranks():
     """An adhesive rough cell, approach and retraction: COMM_WORLD against COMM_SELF, the same
     contact counts and KSP iterations, forces to 1e-10; every state holds (detach_ratio <= 1)."""
-    opts = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
-                hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8, cascade_rtol=1e-3)
-    world = adhbem.Solver(**opts).solve_path()
-    alone = adhbem.Solver(comm=PETSc.COMM_SELF, **opts).solve_path()
-    mpi = PETSc.COMM_WORLD.tompi4py()
-    same = mpi.allreduce(int(np.array_equal(world["contact_points"], alone["contact_points"])
-                             and np.array_equal(world["ksp_iterations"], alone["ksp_iterations"])), op=_min())
-    rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
-    assert same == 1 and rel < 1e-10
-    assert np.all(world["detach_ratio"] <= 1 + 1e-9) and world["contact_points"].max() > 0
+    assert_same_on_any_ranks(dict(ROUGH, cascade_rtol=1e-3))
 
 
 @pytest.mark.parametrize("value", ["-0.1", "1"])
@@ -87,8 +94,6 @@ def test_bad_cascade_rtol_is_refused(tmp_path, value):
 
 # -adh_cascade_apart D: points may join in a set update that lets others go, D grid spacings away
 # from them (docs/performance.md: the work-precision table and the cost as the cell grows).
-ROUGH = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
-             hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8)
 
 
 def test_apart_cascade_on_the_jkr_sphere():
@@ -125,14 +130,7 @@ def test_apart_cascade_on_a_rough_cell():
 def test_apart_cascade_on_any_number_of_ranks(D):
     """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
     D = 20 reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps."""
-    world = adhbem.Solver(cascade_apart=D, **ROUGH).solve_path()
-    alone = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_apart=D, **ROUGH).solve_path()
-    mpi = PETSc.COMM_WORLD.tompi4py()
-    same = mpi.allreduce(int(np.array_equal(world["contact_points"], alone["contact_points"])
-                             and np.array_equal(world["ksp_iterations"], alone["ksp_iterations"])), op=_min())
-    rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
-    assert same == 1 and rel < 1e-10
-    assert np.all(world["detach_ratio"] <= 1 + 1e-9) and world["contact_points"].max() > 0
+    assert_same_on_any_ranks(dict(ROUGH, cascade_apart=D))
 
 
 @pytest.mark.parametrize("args, message", [

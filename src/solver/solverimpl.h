@@ -135,7 +135,7 @@ struct _n_AdhSolver {
   PetscInt  removed_now;      /* with cascade_apart: how many let go in the current update */
   PetscSF   apart_sf;         /* with cascade_apart: the marks of the D rows beyond a rank's own (cascadeapart.c) */
   PetscInt *apart_source, *apart_rows, *apart_count;
-  char     *apart_ghost, *apart_band;
+  char     *apart_ghost, *apart_band, *apart_any;
   PetscInt  step_largest;     /* the largest set of the current step (points) */
   PetscInt  nlocal;
   AdhAttach attach;

@@ -13,6 +13,7 @@
    The points let go in the update are marked in s->gone (AdhSolverRemovePoint_Private); the marks
    of the D rows beyond a rank's own come from the ranks that own them (a PetscSF of bytes), and a
    running count along x, then along y, widens the marks by D. */
+#include <string.h>
 #include "solver/solverimpl.h"
 
 /* The SF that brings each rank the marks of the D rows before and after its own (wrapped on a
@@ -59,7 +60,7 @@ PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
   PetscCall(PetscSFCreate(s->comm, &s->apart_sf));
   PetscCall(PetscSFSetGraph(s->apart_sf, ym * Nx, nghost * Nx, NULL, PETSC_OWN_POINTER, remote, PETSC_OWN_POINTER));
   PetscCall(PetscSFSetUp(s->apart_sf));
-  PetscCall(PetscMalloc3(nghost * Nx + 1, &s->apart_ghost, (ym + 2 * D) * Nx, &s->apart_band, Nx, &s->apart_count));
+  PetscCall(PetscMalloc4(nghost * Nx + 1, &s->apart_ghost, (ym + 2 * D) * Nx, &s->apart_band, Nx, &s->apart_count, ym + 2 * D, &s->apart_any));
   PetscCall(PetscFree(ly));
   PetscCall(PetscFree(start));
   PetscFunctionReturn(0);
@@ -70,7 +71,7 @@ PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(PetscSFDestroy(&s->apart_sf));
   PetscCall(PetscFree2(s->apart_source, s->apart_rows));
-  PetscCall(PetscFree3(s->apart_ghost, s->apart_band, s->apart_count));
+  PetscCall(PetscFree4(s->apart_ghost, s->apart_band, s->apart_count, s->apart_any));
   PetscFunctionReturn(0);
 }
 
@@ -80,21 +81,22 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
   const AdhGrid   g = s->grid;
   const PetscInt  D = s->cascade_apart, Nx = g->Nx;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscInt        ys, ym, e, i, j;
-  char           *band = s->apart_band;
+  PetscInt        ys, ym, e, i, j, active = 0;
+  char           *band = s->apart_band, *any = s->apart_any;
   PetscInt       *count = s->apart_count;
 
   PetscFunctionBegin;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(PetscSFBcastBegin(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
-  /* along x: each row of the band, a running count of the marks within D */
+  /* along x: each row of the band, a running count of the marks within D (most rows have none) */
   for (e = 0; e < ym + 2 * D; e++) {
     const PetscInt src = s->apart_source[e];
     const char    *row = src < 0 ? NULL : src < ym ? s->gone + src * Nx : s->apart_ghost + (src - ym) * Nx;
     char          *out = band + e * Nx;
     PetscInt       c   = 0;
-    if (!row) {
+    any[e] = (char)(row && memchr(row, 1, (size_t)Nx));
+    if (!any[e]) {
       PetscCall(PetscArrayzero(out, Nx));
       continue;
     }
@@ -106,14 +108,26 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
     }
 #undef AT
   }
-  /* along y: for each own row j (band row j + D), the count over band rows j .. j + 2D */
+  /* along y: for each own row j (band row j + D), the count over band rows j .. j + 2D; only rows
+     with marks change it */
   PetscCall(PetscArrayzero(count, Nx));
-  for (e = 0; e <= 2 * D; e++)
+  for (e = 0; e <= 2 * D; e++) {
+    if (!any[e]) continue;
+    active++;
     for (i = 0; i < Nx; i++) count[i] += band[e * Nx + i];
+  }
   for (j = 0; j < ym; j++) {
-    for (i = 0; i < Nx; i++) s->gone[j * Nx + i] = (char)(count[i] > 0);
-    if (j + 1 < ym)
-      for (i = 0; i < Nx; i++) count[i] += band[(j + 2 * D + 1) * Nx + i] - band[j * Nx + i];
+    if (active) for (i = 0; i < Nx; i++) s->gone[j * Nx + i] = (char)(count[i] > 0);
+    else PetscCall(PetscArrayzero(s->gone + j * Nx, Nx));
+    if (j + 1 == ym) break;
+    if (any[j + 2 * D + 1]) {
+      active++;
+      for (i = 0; i < Nx; i++) count[i] += band[(j + 2 * D + 1) * Nx + i];
+    }
+    if (any[j]) {
+      active--;
+      for (i = 0; i < Nx; i++) count[i] -= band[j * Nx + i];
+    }
   }
   PetscFunctionReturn(0);
 }

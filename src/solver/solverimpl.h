@@ -131,6 +131,8 @@ struct _n_AdhSolver {
   char     *in_set;
   char     *left;             /* points that let go during the current step (they stay off: AttachLimit) */
   PetscInt  cascade_apart;    /* -adh_cascade_apart D: points join in an update that lets others go, D spacings away from them (0: off) */
+  PetscInt  apart_D;          /* the D the marks were set up for */
+  PetscBool apart_pending;    /* in such an update, between the detach and the attach test (cascadeapart.c) */
   char     *gone;             /* with cascade_apart: the points let go in the current update, then those within D of them */
   PetscInt  removed_now;      /* with cascade_apart: how many let go in the current update */
   PetscSF   apart_sf;         /* with cascade_apart: the marks of the D rows beyond a rank's own (cascadeapart.c) */
@@ -239,8 +241,6 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscRe
 PETSC_INTERN PetscErrorCode AdhSolverSetIterate_Private(AdhSolver, Vec xC);
 PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
-/* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control
-   response xa, when given) become zero. */
 /* A new step, or a trial of one: no point has let go in it yet, and its largest set is the
    current one (AttachLimit). */
 static inline PetscErrorCode AdhSolverBeginSetUpdates_Private(AdhSolver s)
@@ -250,17 +250,22 @@ static inline PetscErrorCode AdhSolverBeginSetUpdates_Private(AdhSolver s)
   s->step_largest = s->npoints;
   PetscFunctionReturn(0);
 }
+/* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control
+   response xa, when given) become zero. In an update of -adh_cascade_apart the point is marked
+   instead, and its pressure stays until the update's attach test has seen the solved state
+   (AdhSolverEndCascadeApart_Private). */
 static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscScalar *pa, PetscScalar *xa)
 {
   s->in_set[k] = 0;
   s->left[k]   = 1;
-  if (s->gone) s->gone[k] = 1;
-  pa[k]        = 0.0;
+  if (s->apart_pending) s->gone[k] = 1;
+  else pa[k] = 0.0;
   if (xa) xa[k] = 0.0;
 }
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);

@@ -10,7 +10,9 @@
    cascade's, so the route is judged by its error against the converged reference
    (docs/performance.md).
 
-   The points let go in the update are marked in s->gone (AdhSolverRemovePoint_Private); the marks
+   The points let go in the update are marked in s->gone (AdhSolverRemovePoint_Private), and keep
+   their pressure until the attach test is over, so that it (and griffith's limits) see the state
+   just solved, whatever the criterion; the marks
    of the D rows beyond a rank's own come from the ranks that own them (a PetscSF of bytes), and a
    running count along x, then along y, widens the marks by D. */
 #include <string.h>
@@ -21,7 +23,7 @@
 PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
 {
   const AdhGrid g = s->grid;
-  const PetscInt D = s->cascade_apart, Nx = g->Nx, Ny = g->Ny;
+  const PetscInt D = s->apart_D = s->cascade_apart, Nx = g->Nx, Ny = g->Ny;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt      ys, ym, *ly, *start, nghost = 0, e, q, i;
   PetscMPIInt   size;
@@ -75,11 +77,25 @@ PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* The update's attach test is over: the points let go lose their pressure (off the set p is 0). */
+PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver s)
+{
+  PetscScalar *pa;
+
+  PetscFunctionBegin;
+  s->apart_pending = PETSC_FALSE;
+  PetscCall(VecGetArray(s->p, &pa));
+  for (PetscInt k = 0; k < s->nlocal; k++)
+    if (!s->in_set[k]) pa[k] = 0.0;
+  PetscCall(VecRestoreArray(s->p, &pa));
+  PetscFunctionReturn(0);
+}
+
 /* s->gone: the points let go in this update, widened by D; the attach test leaves them alone. */
 PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
 {
   const AdhGrid   g = s->grid;
-  const PetscInt  D = s->cascade_apart, Nx = g->Nx;
+  const PetscInt  D = s->apart_D, Nx = g->Nx;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt        ys, ym, e, i, j, active = 0;
   char           *band = s->apart_band, *any = s->apart_any;

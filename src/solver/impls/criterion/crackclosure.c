@@ -718,8 +718,10 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   PetscCall(VecRestoreArray(s->p, &pa));
   if (removed) {
     PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
-    s->gap_current = (PetscBool)(*removed == 0 || s->gone); /* p unchanged: the attach test takes this gap (-adh_cascade_apart: the solved p's, before the points let go) */
-    if ((!*removed || s->gone) && s->attach == ADH_ATTACH_GRIFFITH && AdhSolverIsAdhesive_Private(s)) PetscCall(GriffithLimits(s, cc));
+    /* p unchanged (-adh_cascade_apart: the points let go keep theirs until the attach test): it
+       takes this gap, and griffith's limits of this p */
+    s->gap_current = (PetscBool)(*removed == 0 || s->apart_pending);
+    if ((!*removed || s->apart_pending) && s->attach == ADH_ATTACH_GRIFFITH && AdhSolverIsAdhesive_Private(s)) PetscCall(GriffithLimits(s, cc));
   }
   if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
   if (decision) {

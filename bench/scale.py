@@ -206,7 +206,7 @@ def main():
         json.dump(dict(mine, d1=d1), open(meta, "w"))
     if not a.report and not finished(results):
         rc = segment(a, d1, results, checkpoint, record)
-        if rc:
+        if rc and not finished(results):  # (a stop after the path's end loses nothing)
             report(a, d1, results, record)
             sys.exit(f"bench scale: the run stopped (exit {rc}); the same command goes on from {checkpoint}")
     report(a, d1, results, record)

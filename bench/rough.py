@@ -28,14 +28,17 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
 
 
-def depth(n, quantile=0.25):
-    """The indentation at which `quantile` of the gap profile h = max(z) - z lies below it (in a
-    process of its own: this one starts mpirun and must not initialise MPI)."""
+def depth(n, quantile=0.25, **surface):
+    """The indentation at which `quantile` of the gap profile h = max(z) - z lies below it, on this
+    bench's surface (Hurst 0.8, rms slope 0.1, seed 1; further keywords of adhbem.rough_surface in
+    surface), in a process of its own: this one starts mpirun and must not initialise MPI."""
     code = ("import sys, numpy as np, adhbem\n"
-            f"z, _ = adhbem.rough_surface({n}, size={float(n)}, hurst=0.8, rms_slope=0.1, seed=1)\n"
+            f"z, _ = adhbem.rough_surface({n}, size={float(n)}, hurst=0.8, rms_slope=0.1, seed=1, **{surface!r})\n"
             "h = z.getArray().max() - z.getArray()\n"
             f"print(repr(float(np.quantile(h, {quantile}))))\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    path = os.pathsep.join(filter(None, [os.path.join(ROOT, "python"), os.environ.get("PYTHONPATH")]))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env=dict(os.environ, PYTHONPATH=path))
     return float(out.stdout.split()[-1])
 
 

@@ -42,18 +42,9 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
+from convergence import loop_energy  # noqa: E402  (tools/rough.py's, as bench convergence judges it)
+from rough import depth  # noqa: E402  (bench/rough.py: the depth of a quarter of the gap profile)
 
-
-def _loop_energy():
-    """tools/rough.py's loop_energy (by path: bench/ has a rough.py of its own; numpy only at import)."""
-    import importlib.util
-    spec = importlib.util.spec_from_file_location("tools_rough", os.path.join(ROOT, "tools", "rough.py"))
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod.loop_energy
-
-
-loop_energy = _loop_energy()
 
 PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\s+(\S+)")
 
@@ -61,19 +52,6 @@ PEAK = re.compile(r"Maximum \(over computational time\) process memory:\s+total\
 def surface(a):
     return ["-adh_boundary", "periodic", "-adh_indenter", "rough", "-adh_hurst", "0.8", "-adh_rms_slope", "0.1",
             "-adh_rolloff_wavelength", repr(a.rolloff), "-adh_cutoff_wavelength", repr(a.cutoff), "-adh_seed", "1"]
-
-
-def depth(n, rolloff, cutoff, quantile=0.25):
-    """d1: the indentation at which `quantile` of the gap profile lies below it (in a process of its
-    own, as this one must not initialise MPI)."""
-    code = ("import numpy as np, adhbem\n"
-            f"z, _ = adhbem.rough_surface({n}, size={float(n)}, hurst=0.8, rms_slope=0.1,"
-            f" rolloff_wavelength={rolloff!r}, cutoff_wavelength={cutoff!r}, seed=1)\n"
-            "z = z.getArray()\n"
-            f"print(repr(float(np.quantile(z.max() - z, {quantile}))))\n")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [os.path.join(ROOT, "python"), os.environ.get("PYTHONPATH")])))
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
-    return float(out.stdout.split()[-1])
 
 
 def curve(results):
@@ -202,7 +180,7 @@ def main():
         if kept != mine:
             sys.exit(f"bench scale: {a.dir} holds a run with other options ({kept}); give another --dir")
     else:
-        d1 = depth(a.n, a.rolloff, a.cutoff)
+        d1 = depth(a.n, rolloff_wavelength=a.rolloff, cutoff_wavelength=a.cutoff)
         json.dump(dict(mine, d1=d1), open(meta, "w"))
     if not a.report and not finished(results):
         rc = segment(a, d1, results, checkpoint, record)

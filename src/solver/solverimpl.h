@@ -132,9 +132,8 @@ struct _n_AdhSolver {
   char     *left;             /* points that let go during the current step (they stay off: AttachLimit) */
   PetscInt  cascade_apart;    /* -adh_cascade_apart D: points join in an update that lets others go, D spacings away from them (0: off) */
   PetscInt  apart_D;          /* the D the marks were set up for */
-  PetscBool apart_pending;    /* in such an update, between the detach and the attach test (cascadeapart.c) */
+  PetscBool apart_pending;    /* in such an update, from before the detach to the end of the attach test (cascadeapart.c) */
   char     *gone;             /* with cascade_apart: the points let go in the current update, then those within D of them */
-  PetscInt  removed_now;      /* with cascade_apart: how many let go in the current update */
   PetscSF   apart_sf;         /* with cascade_apart: the marks of the D rows beyond a rank's own (cascadeapart.c) */
   PetscInt *apart_source, *apart_rows, *apart_count;
   char     *apart_ghost, *apart_band, *apart_any;
@@ -264,6 +263,7 @@ static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscSc
 }
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverBeginCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
@@ -289,7 +289,7 @@ static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
 {
   return PetscMax(ADH_NORMAL_RADIUS, (PetscInt)PetscCeilReal(radius));
 }
-PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt removed, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);
 PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);

@@ -62,6 +62,7 @@ PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
   PetscCall(PetscSFCreate(s->comm, &s->apart_sf));
   PetscCall(PetscSFSetGraph(s->apart_sf, ym * Nx, nghost * Nx, NULL, PETSC_OWN_POINTER, remote, PETSC_OWN_POINTER));
   PetscCall(PetscSFSetUp(s->apart_sf));
+  PetscCall(PetscCalloc1(ym * Nx + 1, &s->gone));
   PetscCall(PetscMalloc4(nghost * Nx + 1, &s->apart_ghost, (ym + 2 * D) * Nx, &s->apart_band, Nx, &s->apart_count, ym + 2 * D, &s->apart_any));
   PetscCall(PetscFree(ly));
   PetscCall(PetscFree(start));
@@ -71,13 +72,24 @@ PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
 PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver s)
 {
   PetscFunctionBegin;
+  PetscCall(PetscFree(s->gone));
   PetscCall(PetscSFDestroy(&s->apart_sf));
   PetscCall(PetscFree2(s->apart_source, s->apart_rows));
   PetscCall(PetscFree4(s->apart_ghost, s->apart_band, s->apart_count, s->apart_any));
   PetscFunctionReturn(0);
 }
 
-/* The update's attach test is over: the points let go lose their pressure (off the set p is 0). */
+/* An update whose attach test will follow its detach test: no point marked yet, and the points
+   let go keep their pressure (AdhSolverRemovePoint_Private). */
+PetscErrorCode AdhSolverBeginCascadeApart_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(s->gone, s->nlocal));
+  s->apart_pending = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The update's attach test is over: the points let go (among the marks) lose their pressure. */
 PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver s)
 {
   PetscScalar *pa;
@@ -86,7 +98,7 @@ PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver s)
   s->apart_pending = PETSC_FALSE;
   PetscCall(VecGetArray(s->p, &pa));
   for (PetscInt k = 0; k < s->nlocal; k++)
-    if (!s->in_set[k]) pa[k] = 0.0;
+    if (s->gone[k] && !s->in_set[k]) pa[k] = 0.0;
   PetscCall(VecRestoreArray(s->p, &pa));
   PetscFunctionReturn(0);
 }

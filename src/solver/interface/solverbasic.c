@@ -145,7 +145,6 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(VecDestroy(&s->indenter.z));
   PetscCall(PetscFree(s->in_set));
   PetscCall(PetscFree(s->left));
-  PetscCall(PetscFree(s->gone));
   PetscCall(AdhSolverDestroyCascadeApart_Private(s));
   PetscCall(PetscFree(s->path));
   PetscCall(AdhCurveDestroy_Private(&s->curve));

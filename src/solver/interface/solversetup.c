@@ -165,11 +165,8 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
-    if (s->cascade_apart > 0) {
-      PetscCall(PetscCalloc1(nlocal + 1, &s->gone));
-      PetscCall(AdhSolverSetUpCascadeApart_Private(s));
-    }
     s->nlocal = nlocal;
+    if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 
     PetscCall(KSPCreate(s->comm, &s->ksp));

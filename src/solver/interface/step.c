@@ -372,8 +372,10 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
    rate_k per unit e, so point k touches at e_k = e - (limit_k - g_k) / rate_k. At most as many
    join as a quarter of the set has points (the set grows by at most 25%), the first to touch; the next force
    balance, with them, decides about the others. Adding every point that penetrates at the e of a
-   small, soft set would attach points that the load never reaches. */
-PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
+   small, soft set would attach points that the load never reaches. With removed > 0
+   (-adh_cascade_apart, in an update that let that many points go) the points marked in s->gone
+   stay off, and the set's size after the update counts without the points let go. */
+PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt removed, PetscInt *added)
 {
   const PetscScalar *ga, *ta, *ra = NULL, *la;
   PetscReal          tu;
@@ -422,7 +424,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
     }
   }
   for (k = 0; k < n; k++)
-    if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit) && !(s->removed_now && s->gone[k])) {
+    if (CANDIDATE(k) && (!rate || TOUCH(k) <= elimit) && !(removed && s->gone[k])) {
       s->in_set[k] = 1;
       count++;
     }
@@ -434,8 +436,8 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt *added)
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(MPIU_Allreduce(&count, added, 1, MPIU_INT, MPI_SUM, s->comm));
-  if (s->attach == ADH_ATTACH_GRIFFITH && s->npoints - s->removed_now + *added > s->step_largest) { /* the points that let go may come back (AttachLimit) */
-    s->step_largest = s->npoints - s->removed_now + *added;
+  if (s->attach == ADH_ATTACH_GRIFFITH && s->npoints - removed + *added > s->step_largest) { /* the points that let go may come back (AttachLimit) */
+    s->step_largest = s->npoints - removed + *added;
     PetscCall(PetscArrayzero(s->left, s->nlocal));
   }
   PetscFunctionReturn(0);

@@ -28,27 +28,24 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
     PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
     s->solve_loose = PETSC_FALSE;
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
-    if (s->gone) { /* -adh_cascade_apart: mark the points let go, keep their pressure for the attach test */
-      PetscCall(PetscArrayzero(s->gone, s->nlocal));
-      s->apart_pending = PETSC_TRUE;
-    }
+    /* -adh_cascade_apart: the points let go are marked and keep their pressure for this update's
+       attach test; not after a certified stop, whose iterate decides only the detachments */
+    if (s->gone && !s->certified_stop) PetscCall(AdhSolverBeginCascadeApart_Private(s));
     PetscCall(AdhSolverDetach_Private(s, &removed));
+    if (!removed) s->apart_pending = PETSC_FALSE; /* nothing marked */
     if (!removed && loose) { /* the set stands on a loose solve: solve to the full tolerance and test again */
-      if (s->apart_pending) PetscCall(AdhSolverEndCascadeApart_Private(s));
       loose = PETSC_FALSE;
       PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
       continue;
     }
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
     added = 0;
-    if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, &added));
-    else if (s->gone && !s->certified_stop) { /* -adh_cascade_apart: join away from the points let go (not on an iterate: a certified stop decided only the detachments) */
+    if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, 0, &added));
+    else if (s->apart_pending) { /* -adh_cascade_apart: join away from the points let go */
       PetscCall(AdhSolverMarkNearGone_Private(s));
-      s->removed_now = removed;
-      PetscCall(AdhSolverAttach_Private(s, NULL, &added));
-      s->removed_now = 0;
+      PetscCall(AdhSolverAttach_Private(s, NULL, removed, &added));
+      PetscCall(AdhSolverEndCascadeApart_Private(s));
     }
-    if (s->apart_pending) PetscCall(AdhSolverEndCascadeApart_Private(s));
     s->joined_step += added;
     PetscCheck(!s->certified_attach || (!removed && added), s->comm, PETSC_ERR_PLIB, "Certified early stop for an attach test that changed nothing");
     if (removed || added) {

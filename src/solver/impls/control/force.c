@@ -139,7 +139,7 @@ static PetscErrorCode Equilibrate(AdhSolver s, PetscReal F, PetscBool unique)
       PetscCall(MatMult(s->K, s->xunit, s->gap_rate));
       PetscCall(VecScale(s->gap_rate, -1.0));
       PetscCall(VecShift(s->gap_rate, 1.0 - (s->Kmean ? s->c0 * PetscRealPart(Fx) / (s->grid->Nx * s->grid->Ny) : 0.0)));
-      PetscCall(AdhSolverAttach_Private(s, s->gap_rate, &added));
+      PetscCall(AdhSolverAttach_Private(s, s->gap_rate, 0, &added));
     }
     if (removed || added) {
       PetscCall(AdhSolverRebuildSet_Private(s));

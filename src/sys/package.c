@@ -4,7 +4,7 @@
 #include "adhbem.h"
 
 PetscClassId  ADH_CLASSID;
-PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict;
+PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits;
 
 static PetscBool AdhPackageInitialized = PETSC_FALSE;
 
@@ -29,6 +29,8 @@ PetscErrorCode AdhInitializePackage(void)
   PetscCall(PetscLogEventRegister("AdhStepSolve", ADH_CLASSID, &ADH_Solve));
   PetscCall(PetscLogEventRegister("AdhSetUpdate", ADH_CLASSID, &ADH_SetUpdate));
   PetscCall(PetscLogEventRegister("AdhPredict", ADH_CLASSID, &ADH_Predict));
+  PetscCall(PetscLogEventRegister("AdhDetachTest", ADH_CLASSID, &ADH_DetachTest));
+  PetscCall(PetscLogEventRegister("AdhAttachLimits", ADH_CLASSID, &ADH_AttachLimits));
   PetscCall(PetscRegisterFinalize(AdhFinalizePackage));
   PetscFunctionReturn(0);
 }

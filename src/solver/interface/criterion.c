@@ -69,7 +69,9 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
   PetscFunctionBegin;
   s->gap_current          = PETSC_FALSE;
   s->attach_limit_current = PETSC_FALSE;
+  PetscCall(PetscLogEventBegin(ADH_DetachTest, 0, 0, 0, 0));
   PetscCall(s->crops.evaluate(s, PETSC_TRUE, removed, NULL));
+  PetscCall(PetscLogEventEnd(ADH_DetachTest, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

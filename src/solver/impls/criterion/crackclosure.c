@@ -472,6 +472,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   PetscInt           ys, ym, gys = cc->gys, gym = cc->gym, i, j, a, b;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(ADH_AttachLimits, 0, 0, 0, 0));
   if (!s->attach_limit) PetscCall(VecDuplicate(s->p, &s->attach_limit));
   if (!cc->P.ghost) PetscCall(VecDuplicate(cc->U.ghost, &cc->P.ghost));
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
@@ -531,6 +532,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   PetscCall(RestoreRows(&cc->H, &hl));
   PetscCall(RestoreRows(&cc->U, &ul));
   s->attach_limit_current = PETSC_TRUE;
+  PetscCall(PetscLogEventEnd(ADH_AttachLimits, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -68,7 +68,8 @@ typedef struct {
   VecScatter  fetch;        /* grid vector -> the other ranks' rows among them */
   Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
   FetchedRows U, H, Gf, P;  /* the rows of u, h, G and p (griffith) */
-  PetscInt   *seen, *queue; /* the walk along the front within the disk: offsets (2 width + 1)^2 */
+  PetscInt   *seen;         /* the walk along the front within the disk: offsets (2 width + 1)^2 met, */
+  PetscInt   *qi, *qj;      /* and the offsets reached, in the order met */
   PetscInt   *col, *row;    /* the walk's columns and rows in the fetched rows, 2 width + 1 each */
   PetscInt   *links;        /* per fetched point of the front, its front neighbours within two
                                rows and columns as bits (FrontLinks) */
@@ -141,7 +142,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   PetscCall(ISDestroy(&from));
   PetscCall(PetscMalloc4(cc->gym, &cc->U.store, cc->gym, &cc->H.store, cc->gym, &cc->Gf.store, cc->gym, &cc->P.store));
   side = 2 * cc->width + 1;
-  PetscCall(PetscCalloc2(side * side, &cc->seen, side * side, &cc->queue));
+  PetscCall(PetscCalloc3(side * side, &cc->seen, side * side, &cc->qi, side * side, &cc->qj));
   PetscCall(PetscMalloc2(side, &cc->col, side, &cc->row));
   PetscCall(PetscMalloc1(cc->gym * g->Nx, &cc->links));
   PetscFunctionReturn(0);
@@ -200,8 +201,9 @@ static inline PetscBool Neighbour(const AdhGrid g, PetscBool wrap, PetscInt gys,
 {
   *a = i + di;
   *b = j + dj;
-  if (wrap) *a = (*a % g->Nx + g->Nx) % g->Nx; /* offsets reach beyond a narrow cell's width */
-  else if (*a < 0 || *a >= g->Nx || *b < 0 || *b >= g->Ny) return PETSC_FALSE;
+  if (wrap) {
+    if (*a < 0 || *a >= g->Nx) *a = (*a % g->Nx + g->Nx) % g->Nx; /* offsets reach beyond a narrow cell's width */
+  } else if (*a < 0 || *a >= g->Nx || *b < 0 || *b >= g->Ny) return PETSC_FALSE;
   return (PetscBool)(*b >= gys && *b < gys + gym);
 }
 
@@ -241,6 +243,10 @@ static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, 
    Gl), bit (ej + 2) 5 + (ei + 2) set when (i + ei, j + ej) is a fetched point of the front too
    (wrapped on a periodic cell), so that a walk looks at a point's few front neighbours instead of
    all 25 offsets around it. */
+/* The offset of link bit k: (k mod 5 - 2, k div 5 - 2). */
+static const PetscInt LinkDi[25] = {-2, -1, 0, 1, 2, -2, -1, 0, 1, 2, -2, -1, 0, 1, 2, -2, -1, 0, 1, 2, -2, -1, 0, 1, 2};
+static const PetscInt LinkDj[25] = {-2, -2, -2, -2, -2, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2};
+
 static PetscErrorCode FrontLinks(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl)
 {
   const AdhGrid  g  = s->grid;
@@ -334,6 +340,7 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
   const AdhGrid   g = s->grid;
   const PetscInt  w = cc->width, side = 2 * w + 1;
   const PetscReal rad2 = radius * radius;
+  const PetscInt  r2lim = (PetscInt)PetscCeilReal(rad2);
   PetscReal       M[5][5] = {{0}}; /* the window's moments sum wt di^a dj^b about (i, j), a + b <= 4 */
   const PetscInt  NONE = PETSC_MIN_INT;
   PetscInt        head = 0, tail = 0, *col = cc->col + w, *row = cc->row + w;
@@ -353,23 +360,40 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
     cc->stamp = 0;
   }
   cc->stamp++;
-  cc->queue[tail++]      = w * side + w; /* offset (0, 0) */
+  cc->qi[0]              = 0; /* offset (0, 0) */
+  cc->qj[0]              = 0;
+  tail                   = 1;
   cc->seen[w * side + w] = cc->stamp;
-  *sum                   = 0.0;
-  *weights               = 0.0;
+  /* the walk: the front points reached, in the order met (a breadth-first search over the links);
+     an offset lies inside the disk when its integer r^2 is below ceil(rad2) */
   while (head < tail) {
-    const PetscInt  o = cc->queue[head++], di = o % side - w, dj = o / side - w;
-    const PetscReal r2 = (PetscReal)(di * di + dj * dj), wt = (1.0 - r2 / rad2) * (1.0 - r2 / rad2);
+    const PetscInt di = cc->qi[head], dj = cc->qj[head++];
 
     PetscCheck(col[di] != NONE && row[dj] != NONE, PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: front point outside the fetched rows");
+    /* its front neighbours, in the order of the offsets (ej, then ei, ascending) */
+    for (PetscInt bits = cc->links[(row[dj] - cc->gys) * s->grid->Nx + col[di]]; bits; bits &= bits - 1) {
+      const PetscInt k = __builtin_ctz((unsigned)bits), ni = di + LinkDi[k], nj = dj + LinkDj[k], no = (nj + w) * side + (ni + w);
+      if (ni * ni + nj * nj >= r2lim || cc->seen[no] == cc->stamp) continue;
+      cc->seen[no]     = cc->stamp;
+      cc->qi[tail]     = ni;
+      cc->qj[tail++]   = nj;
+    }
+  }
+  /* the sums over them in that order, apart from the walk so that the weights' divisions overlap */
+  *sum     = 0.0;
+  *weights = 0.0;
+  if (record && cc->nmember + tail > cc->capmember) { /* into the front's cache */
+    cc->capmember = PetscMax(PetscMax(1024, 2 * cc->capmember), cc->nmember + tail);
+    PetscCall(PetscRealloc(cc->capmember * sizeof(PetscInt), &cc->member));
+    PetscCall(PetscRealloc(cc->capmember * sizeof(PetscReal), &cc->weight));
+  }
+  for (PetscInt m = 0; m < tail; m++) {
+    const PetscInt  di = cc->qi[m], dj = cc->qj[m];
+    const PetscReal r2 = (PetscReal)(di * di + dj * dj), wt = (1.0 - r2 / rad2) * (1.0 - r2 / rad2);
+
     *sum += wt * PetscRealPart(Gl[row[dj]][col[di]]);
     *weights += wt;
-    if (record) { /* into the front's cache */
-      if (cc->nmember == cc->capmember) {
-        cc->capmember = PetscMax(1024, 2 * cc->capmember);
-        PetscCall(PetscRealloc(cc->capmember * sizeof(PetscInt), &cc->member));
-        PetscCall(PetscRealloc(cc->capmember * sizeof(PetscReal), &cc->weight));
-      }
+    if (record) {
       cc->member[cc->nmember]   = (row[dj] - gys) * g->Nx + col[di];
       cc->weight[cc->nmember++] = wt;
     }
@@ -379,13 +403,6 @@ static PetscErrorCode FrontMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, P
         PetscReal xy = xa;
         for (PetscInt b = 0; a + b <= 4; b++, xy *= dj) M[a][b] += xy;
       }
-    }
-    /* its front neighbours, in the order of the offsets (ej, then ei, ascending) */
-    for (PetscInt bits = cc->links[(row[dj] - cc->gys) * s->grid->Nx + col[di]]; bits; bits &= bits - 1) {
-      const PetscInt k = __builtin_ctz((unsigned)bits), ni = di + k % 5 - 2, nj = dj + k / 5 - 2, no = (nj + w) * side + (ni + w);
-      if ((PetscReal)(ni * ni + nj * nj) >= rad2 || cc->seen[no] == cc->stamp) continue;
-      cc->seen[no]      = cc->stamp;
-      cc->queue[tail++] = no;
     }
   }
   if (curvature) PetscCall(FitCurvature(M, curvature));
@@ -770,7 +787,7 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(PetscFree(cc->rowmap));
   PetscCall(VecScatterDestroy(&cc->fetch));
   PetscCall(PetscFree4(cc->U.store, cc->H.store, cc->Gf.store, cc->P.store));
-  PetscCall(PetscFree2(cc->seen, cc->queue));
+  PetscCall(PetscFree3(cc->seen, cc->qi, cc->qj));
   PetscCall(PetscFree2(cc->col, cc->row));
   PetscCall(PetscFree(cc->links));
   PetscCall(PetscFree(cc->slot));

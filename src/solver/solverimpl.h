@@ -141,7 +141,7 @@ struct _n_AdhSolver {
   PetscInt  nlocal;
   AdhAttach attach;
   PetscBool attach_chosen; /* set by the user (else griffith with crack-closure, reach otherwise, at set-up) */
-  Vec       attach_limit;      /* griffith: the gap below which each open point joins, from the last detach test */
+  Vec       attach_limit;      /* griffith: the gap below which each open point joins, from the last detach test (crack-closure's G vector, written over) */
   PetscBool attach_limit_current; /* it belongs to the current p (the detach test just before let nothing go) */
   IS        contact;
   PetscInt  npoints;          /* global size of the set */

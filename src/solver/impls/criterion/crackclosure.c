@@ -85,6 +85,8 @@ typedef struct {
   PetscInt    nentry, capentry, nmember, capmember;
   PetscInt   *member;
   PetscReal  *weight;
+  PetscReal  *front_limit;  /* griffith: the limits of the outer front's points, in the order of the grid */
+  PetscInt    capfront;
 } CrackClosure;
 
 /* defined below: the certified stop, chosen at set-up (-adh_criterion_certify) */
@@ -486,11 +488,14 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   const PetscScalar *ta, **ul, **hl, **pl, **Gl;
   PetscScalar       *Ga, *la;
   PetscReal          tu;
-  PetscInt           ys, ym, gys = cc->gys, gym = cc->gym, i, j, a, b;
+  PetscInt           ys, ym, gys = cc->gys, gym = cc->gym, i, j, k, a, b, nfront;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_AttachLimits, 0, 0, 0, 0));
-  if (!s->attach_limit) PetscCall(VecDuplicate(s->p, &s->attach_limit));
+  if (!s->attach_limit) { /* G's storage: the limits are written over it once G is no longer read */
+    PetscCall(PetscObjectReference((PetscObject)cc->G));
+    s->attach_limit = cc->G;
+  }
   if (!cc->P.ghost) PetscCall(VecDuplicate(cc->U.ghost, &cc->P.ghost));
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(FetchRows(cc, s->p, &cc->P));
@@ -526,26 +531,37 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   PetscCall(RestoreRows(&cc->P, &pl));
   PetscCall(FetchRows(cc, cc->G, &cc->Gf));
 
-  /* the mean along the outer front, against dgamma, as a limit on the gap */
+  /* the mean along the outer front, against dgamma, as a limit on the gap: first into a list of
+     the front's points (the walks read G's rows), then over G itself, which holds the limits */
   PetscCall(GetRows(cc, &cc->Gf, &Gl));
   PetscCall(FrontLinks(s, cc, wrap, Gl));
   cc->links_set = -1; /* the outer front's now */
-  PetscCall(VecGetArray(s->attach_limit, &la));
+  for (j = ys, nfront = 0; j < ys + ym; j++)
+    for (i = 0; i < g->Nx; i++) nfront += (!s->in_set[(j - ys) * g->Nx + i] && !IsNaN(PetscRealPart(Gl[j][i])));
+  if (nfront > cc->capfront) {
+    cc->capfront = PetscMax(nfront, 2 * cc->capfront);
+    PetscCall(PetscFree(cc->front_limit));
+    PetscCall(PetscMalloc1(cc->capfront, &cc->front_limit));
+  }
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &ta, &tu));
-  for (j = ys; j < ys + ym; j++)
+  for (j = ys, nfront = 0; j < ys + ym; j++)
     for (i = 0; i < g->Nx; i++) {
       const PetscInt  k = (j - ys) * g->Nx + i;
       const PetscReal Sigma = ADH_SIGMA_AT(ta, tu, k), dgamma = chi_per_area * Sigma * Sigma;
       PetscReal       sum, n, gap, margin;
-      la[k] = Sigma * K00; /* reach */
       if (s->in_set[k] || IsNaN(PetscRealPart(Gl[j][i]))) continue;
       PetscCall(WindowMean(s, cc, wrap, Gl, i, j, NULL, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
-      gap   = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
-      la[k] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
+      gap                         = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
+      cc->front_limit[nfront++] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
     }
-  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  PetscCall(VecRestoreArray(s->attach_limit, &la));
   PetscCall(RestoreRows(&cc->Gf, &Gl));
+  PetscCall(VecGetArray(s->attach_limit, &la));
+  for (k = 0, nfront = 0; k < s->nlocal; k++) {
+    const PetscBool front = (PetscBool)(!s->in_set[k] && !IsNaN(PetscRealPart(la[k])));
+    la[k] = front ? cc->front_limit[nfront++] : ADH_SIGMA_AT(ta, tu, k) * K00; /* else reach */
+  }
+  PetscCall(VecRestoreArray(s->attach_limit, &la));
+  PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(RestoreRows(&cc->H, &hl));
   PetscCall(RestoreRows(&cc->U, &ul));
   s->attach_limit_current = PETSC_TRUE;
@@ -575,6 +591,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
 
   PetscFunctionBegin;
   PetscCheck(cc->fetch, s->comm, PETSC_ERR_ORDER, "crack-closure: evaluated before set-up");
+  s->attach_limit_current = PETSC_FALSE; /* griffith's limits are kept in G's storage, written below */
   if (decision) {
     PetscReal rho;
     PetscCall(MatAdhComplianceGetRowNormBound(s->K, &rho));
@@ -794,6 +811,7 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(PetscFree(cc->entry));
   PetscCall(PetscFree(cc->member));
   PetscCall(PetscFree(cc->weight));
+  PetscCall(PetscFree(cc->front_limit));
   PetscCall(PetscFree(s->crdata));
   PetscFunctionReturn(0);
 }

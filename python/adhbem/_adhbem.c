@@ -96,6 +96,53 @@ static PyObject *py_compliance_info(PyObject *self, PyObject *args)
   return Py_BuildValue("{s:d,s:d,s:n,s:n,s:n}", "lambda_min", (double)lmin, "row_norm_bound", (double)rho, "mult_count", (Py_ssize_t)count, "Nx", (Py_ssize_t)Nx, "Ny", (Py_ssize_t)Ny);
 }
 
+/* y = R K R^T x for the set of x's nonzero local points, through MatAdhComplianceMultOnSet, in
+   single precision or double (for the tests of the single-precision transforms). */
+static PyObject *py_compliance_mult_on_set(PyObject *self, PyObject *args)
+{
+  PyObject          *pymat, *pyx;
+  int                single;
+  Mat                K;
+  Vec                x, y, xC, yC;
+  const PetscScalar *xa, *ca;
+  PetscScalar       *ya, *xc;
+  PetscInt           n, m = 0, k, *local;
+
+  if (!PyArg_ParseTuple(args, "OOp", &pymat, &pyx, &single)) return NULL;
+  K = PyPetscMat_Get(pymat);
+  x = PyPetscVec_Get(pyx);
+  if (!K || !x) return NULL;
+  PyPetscCall(VecGetLocalSize(x, &n));
+  PyPetscCall(PetscMalloc1(n + 1, &local));
+  PyPetscCall(VecGetArrayRead(x, &xa));
+  for (k = 0; k < n; k++)
+    if (xa[k] != 0.0) local[m++] = k;
+  PyPetscCall(VecCreateSeq(PETSC_COMM_SELF, m, &xC));
+  PyPetscCall(VecDuplicate(xC, &yC));
+  PyPetscCall(VecGetArrayWrite(xC, &xc));
+  for (k = 0; k < m; k++) xc[k] = xa[local[k]];
+  PyPetscCall(VecRestoreArrayWrite(xC, &xc));
+  PyPetscCall(VecRestoreArrayRead(x, &xa));
+  PyPetscCall(MatAdhComplianceSetSinglePrecision(K, single ? PETSC_TRUE : PETSC_FALSE));
+  PyPetscCall(MatAdhComplianceMultOnSet(K, m, local, xC, yC));
+  PyPetscCall(MatAdhComplianceSetSinglePrecision(K, PETSC_FALSE));
+  PyPetscCall(VecDuplicate(x, &y));
+  PyPetscCall(VecSet(y, 0.0));
+  PyPetscCall(VecGetArray(y, &ya));
+  PyPetscCall(VecGetArrayRead(yC, &ca));
+  for (k = 0; k < m; k++) ya[local[k]] = ca[k];
+  PyPetscCall(VecRestoreArrayRead(yC, &ca));
+  PyPetscCall(VecRestoreArray(y, &ya));
+  PyPetscCall(VecDestroy(&xC));
+  PyPetscCall(VecDestroy(&yC));
+  PyPetscCall(PetscFree(local));
+  {
+    PyObject *result = PyPetscVec_New(y);
+    PyPetscCall(VecDestroy(&y));
+    return result;
+  }
+}
+
 static PyObject *py_love(PyObject *self, PyObject *args)
 {
   double x, y, hx, hy, Estar;
@@ -397,6 +444,7 @@ static PyObject *py_solver_view(PyObject *self, PyObject *args)
 }
 
 static PyMethodDef methods[] = {
+  {"compliance_mult_on_set", py_compliance_mult_on_set, METH_VARARGS, "compliance_mult_on_set(K, x, single) -> y = R K R^T x on x's nonzero points (a periodic compliance)"},
   {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> capsule (options read with the prefix)"},
   {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state, the first row of a new curve"},
   {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state, appended to the curve"},

@@ -32,6 +32,9 @@ struct _n_AdhTransform {
   PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
   double    *data;                                    /* in-place transform array */
   fftw_plan  forward, backward;
+  unsigned   flags;                                   /* the planner's effort the plans were made with */
+  float     *fdata;                                   /* the same transform in single precision (MatAdhComplianceSetSinglePrecision): */
+  fftwf_plan fforward, fbackward;                     /* made on first use, NULL before */
   Vec        xfft;                                    /* physical values in FFTW's row distribution */
   VecScatter toFFT;                                   /* grid rows -> FFTW's (NULL: they are the same) */
 };
@@ -46,6 +49,9 @@ PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
   fftw_destroy_plan((*t)->forward);
   fftw_destroy_plan((*t)->backward);
   fftw_free((*t)->data);
+  if ((*t)->fforward) fftwf_destroy_plan((*t)->fforward);
+  if ((*t)->fbackward) fftwf_destroy_plan((*t)->fbackward);
+  fftwf_free((*t)->fdata);
   PetscCall(VecDestroy(&(*t)->xfft));
   PetscCall(VecScatterDestroy(&(*t)->toFFT));
   PetscCall(PetscFree(*t));
@@ -68,6 +74,7 @@ typedef struct {
   PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
   PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
   PetscInt     nmult;
+  PetscBool    single;                                /* MatAdhComplianceMultOnSet in single precision */
 } Compliance;
 
 /* Where the multiplier of local kx column a and row ky = k0 <= n0/2 is kept. */
@@ -202,6 +209,84 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
   PetscFunctionReturn(0);
 }
 
+/* The single-precision twin of t (the same layout: FFTW-MPI distributes by size, not by type),
+   with plans of the same family and effort; collective. */
+static PetscErrorCode EnsureSingle(AdhTransform t, MPI_Comm comm)
+{
+  ptrdiff_t alloc, ln0, l0s, ln1, l1s;
+
+  PetscFunctionBegin;
+  if (t->fdata) PetscFunctionReturn(0);
+  alloc = fftwf_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, comm, &ln0, &l0s, &ln1, &l1s);
+  PetscCheck(ln0 == t->local_n0 && l0s == t->local_0_start && ln1 == t->local_n1 && l1s == t->local_1_start, PETSC_COMM_SELF, PETSC_ERR_LIB, "FFTW-MPI distributes the single-precision transform otherwise than the double one");
+  t->fdata = (float *)fftwf_alloc_complex(PetscMax(alloc, 1));
+  PetscCheck(t->fdata, PETSC_COMM_SELF, PETSC_ERR_MEM, "FFTW could not allocate %td single-precision complex values (out of memory?)", alloc);
+  if (t->serial) {
+    t->fforward  = fftwf_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->fdata, (fftwf_complex *)t->fdata, t->flags);
+    t->fbackward = fftwf_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftwf_complex *)t->fdata, t->fdata, t->flags);
+  } else {
+    t->fforward  = fftwf_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->fdata, (fftwf_complex *)t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_OUT);
+    t->fbackward = fftwf_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftwf_complex *)t->fdata, t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_IN);
+  }
+  PetscCheck(t->fforward && t->fbackward, comm, PETSC_ERR_LIB, "FFTW could not plan a single-precision %td x %td transform", t->n1, t->n0);
+  PetscFunctionReturn(0);
+}
+
+/* Convolve() in single precision, on t->fdata (the multiplier rounded to float as it is applied). */
+static PetscErrorCode ConvolveSingle(Mat K, Compliance *c)
+{
+  fftwf_complex *spec = (fftwf_complex *)c->t->fdata;
+  ptrdiff_t      a, k0, ncomplex = c->t->local_n1 * c->t->n0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
+  fftwf_execute(c->t->fforward);
+  PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
+  if (c->t->serial)
+    for (k0 = 0; k0 < c->t->n0; k0++) {
+      fftwf_complex   *row = spec + k0 * c->t->local_n1;
+      const PetscReal *m   = c->multiplier + (k0 <= c->t->n0 / 2 ? k0 : c->t->n0 - k0) * c->t->local_n1;
+      for (a = 0; a < c->t->local_n1; a++) {
+        row[a][0] *= (float)m[a];
+        row[a][1] *= (float)m[a];
+      }
+    }
+  else
+    for (a = 0; a < c->t->local_n1; a++) {
+      fftwf_complex   *col = spec + a * c->t->n0;
+      const PetscReal *m   = c->multiplier + a * c->nhalf;
+      for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
+        col[k0][0] *= (float)m[k0];
+        col[k0][1] *= (float)m[k0];
+      }
+      for (; k0 < c->t->n0; k0++) {
+        col[k0][0] *= (float)m[c->t->n0 - k0];
+        col[k0][1] *= (float)m[c->t->n0 - k0];
+      }
+    }
+  PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
+  fftwf_execute(c->t->fbackward);
+  PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
+  c->nmult++;
+  PetscCall(PetscLogFlops(4.0 * ncomplex));
+  PetscFunctionReturn(0);
+}
+
+/* Whether MatAdhComplianceMultOnSet applies K in single precision: float transforms, half the
+   bytes to move, for solves that stop at a loose tolerance (-adh_cascade_single). Collective
+   when it turns single precision on (the float plans are made then). */
+PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
+{
+  Compliance     *c;
+  MeanCompliance *mean;
+
+  PetscFunctionBegin;
+  PetscCall(GetCompliance(K, "MatAdhComplianceSetSinglePrecision", &c, &mean));
+  if (single) PetscCall(EnsureSingle(c->t, c->comm));
+  c->single = single;
+  PetscFunctionReturn(0);
+}
+
 /* yC = (K xC) on a set of n local grid points (increasing offsets local[] into this rank's rows),
    xC zero off the set: R K R^T without spreading onto grid vectors. Needs the direct layout. */
 PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local[], Vec xC, Vec yC)
@@ -212,25 +297,30 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
   PetscScalar       *ya;
   PetscInt           k, r;
   double            *data;
+  float             *fdata;
 
   PetscFunctionBegin;
   PetscCall(GetCompliance(K, "MatAdhComplianceMultOnSet", &c, &mean));
   PetscCheck(!c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
-  data = c->t->data;
-  PetscCall(PetscArrayzero(data, c->t->local_n0 * c->t->stride));
+  data  = c->t->data;
+  fdata = c->t->fdata;
+  if (c->single) PetscCall(PetscArrayzero(fdata, c->t->local_n0 * c->t->stride));
+  else PetscCall(PetscArrayzero(data, c->t->local_n0 * c->t->stride));
   /* point local[k] of row r sits at local[k] + r (stride - Nx) in the padded rows */
   PetscCall(VecGetArrayRead(xC, &xa));
   for (k = 0, r = 0; k < n; k++) {
     while (local[k] >= (r + 1) * c->Nx) r++;
-    data[local[k] + r * (c->t->stride - c->Nx)] = PetscRealPart(xa[k]);
+    if (c->single) fdata[local[k] + r * (c->t->stride - c->Nx)] = (float)PetscRealPart(xa[k]);
+    else data[local[k] + r * (c->t->stride - c->Nx)] = PetscRealPart(xa[k]);
   }
   PetscCall(VecRestoreArrayRead(xC, &xa));
-  PetscCall(Convolve(K, c));
+  if (c->single) PetscCall(ConvolveSingle(K, c));
+  else PetscCall(Convolve(K, c));
   PetscCall(VecGetArrayWrite(yC, &ya));
   for (k = 0, r = 0; k < n; k++) {
     while (local[k] >= (r + 1) * c->Nx) r++;
-    ya[k] = data[local[k] + r * (c->t->stride - c->Nx)];
+    ya[k] = c->single ? (PetscScalar)fdata[local[k] + r * (c->t->stride - c->Nx)] : data[local[k] + r * (c->t->stride - c->Nx)];
   }
   PetscCall(VecRestoreArrayWrite(yC, &ya));
   if (mean) {
@@ -501,7 +591,8 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
        each rank times its own trials, and a limit would let ranks take different planning paths
        into different collectives (a deadlock). */
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-    PetscCall(PlanTransform(t, grid->comm, size, PlannerFlag(effort), layout));
+    t->flags = PlannerFlag(effort);
+    PetscCall(PlanTransform(t, grid->comm, size, t->flags, layout));
     if (!t->forward || !t->backward) { /* nothing half-made stays behind */
       const ptrdiff_t n0 = t->n0, n1 = t->n1;
       DestroyPlans(t);

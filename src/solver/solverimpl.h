@@ -169,6 +169,7 @@ struct _n_AdhSolver {
   PetscReal bnorm;
   PetscBool certify, certify_solve, certified_stop;
   PetscReal cascade_rtol;     /* -adh_cascade_rtol: the solves between set updates stop at this relative residual (0: at the KSP's) */
+  PetscBool cascade_single;   /* -adh_cascade_single: those solves in single precision */
   PetscBool solve_loose;      /* the current solve is one of those */
   PetscReal detach_perr;      /* the error bound below which the next detach decision is worth its cost */
   PetscBool detach_none;      /* decided: the exact solution lets no point go */

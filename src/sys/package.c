@@ -12,6 +12,7 @@ static PetscErrorCode AdhFinalizePackage(void)
 {
   PetscFunctionBegin;
   fftw_mpi_cleanup();
+  fftwf_mpi_cleanup();
   AdhPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -22,6 +23,7 @@ PetscErrorCode AdhInitializePackage(void)
   if (AdhPackageInitialized) PetscFunctionReturn(0);
   AdhPackageInitialized = PETSC_TRUE;
   fftw_mpi_init();
+  fftwf_mpi_init();
   PetscCall(PetscClassIdRegister("Adhesive BEM", &ADH_CLASSID));
   PetscCall(PetscLogEventRegister("AdhFFTForward", ADH_CLASSID, &ADH_FFTForward));
   PetscCall(PetscLogEventRegister("AdhFFTBackward", ADH_CLASSID, &ADH_FFTBackward));

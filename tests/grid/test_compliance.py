@@ -93,6 +93,26 @@ def test_periodic_against_numpy_fft(comm, Nx, Ny, Lx, Ly):
 
 
 @pytest.mark.mpi
+def test_single_precision_on_a_set(comm):
+    """MatAdhComplianceMultOnSet (a periodic compliance on a random half of the points): in double
+    as R K R^T from NumPy's FFT to 1e-12; in single precision (-adh_cascade_single's loose solves)
+    within 1e-6 of it, and not equal to it (the float transforms ran)."""
+    from adhbem import _adhbem
+    Nx, Ny, Lx, Ly, E = 40, 24, 2.0, 1.5, 0.7
+    K = adhbem.compliance((Nx, Ny), (Lx, Ly), E, "periodic", comm=comm)
+    rng = np.random.default_rng(5)
+    p = rng.standard_normal((Ny, Nx)) * (rng.random((Ny, Nx)) < 0.5)
+    x = K.createVecRight()
+    adhbem.set_local_rows(x, K, p)
+    reference = periodic_reference(p, Lx, Ly, E) * (p != 0)
+    double = adhbem.gather(_adhbem.compliance_mult_on_set(K, x, False), K)
+    single = adhbem.gather(_adhbem.compliance_mult_on_set(K, x, True), K)
+    assert rel_max(double, reference) < 1e-12
+    assert 1e-10 < rel_max(single, double) < 1e-6
+    assert np.all(single[p == 0] == 0)
+
+
+@pytest.mark.mpi
 @pytest.mark.ranks3
 def test_tiny_grids(comm):
     """Grids so small that some ranks get no FFTW rows or no spectral columns (Nx = 1, 2;

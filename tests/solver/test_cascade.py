@@ -80,6 +80,36 @@ def test_loose_cascade_on_any_number_of_ranks():
     assert_same_on_any_ranks(dict(ROUGH, cascade_rtol=1e-3))
 
 
+def test_single_precision_loose_solves():
+    """-adh_cascade_single: the loose solves in float transforms (tests/grid/test_compliance.py
+    checks that they are float). On the rough cell the same contact sets and KSP iterations as in
+    double, the forces far within the loose tolerance of the double-precision loose cascade's."""
+    double = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH, cascade_rtol=1e-3).solve_path()
+    single = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH, cascade_rtol=1e-3, cascade_single=True).solve_path()
+    rel = float(np.max(np.abs(single["force"] - double["force"])) / np.max(np.abs(double["force"])))
+    say(f"\nrough cell, -adh_cascade_single: forces {rel:.2e} apart from the double-precision loose cascade's")
+    assert np.array_equal(single["contact_points"], double["contact_points"])
+    assert np.array_equal(single["ksp_iterations"], double["ksp_iterations"])
+    assert rel < 1e-6
+
+
+def test_single_precision_loose_solves_on_the_jkr_sphere():
+    """a_c/h = 25: with -adh_cascade_single the largest tension and the curve within 1e-4 F_adh of
+    the double-precision loose cascade's."""
+    loose = jkr_unloading(80, 25.0, cascade_rtol=1e-3)
+    single = jkr_unloading(80, 25.0, cascade_rtol=1e-3, cascade_single=True)
+    say(f"\nJKR sphere a_c/h 25, -adh_cascade_rtol 1e-3: largest tension {loose[0]:.5f} F_adh, RMS {loose[1]:.5f};"
+        f" with -adh_cascade_single: {single[0]:.5f}, RMS {single[1]:.5f}")
+    assert abs(single[0] - loose[0]) < 1e-4 and abs(single[1] - loose[1]) < 1e-4
+
+
+@pytest.mark.mpi
+def test_single_precision_loose_solves_on_any_number_of_ranks():
+    """As test_loose_cascade_on_any_number_of_ranks, in single precision: the float transforms of
+    one and two ranks round differently, and the full solve that ends each step takes that out."""
+    assert_same_on_any_ranks(dict(ROUGH, cascade_rtol=1e-3, cascade_single=True))
+
+
 @pytest.mark.parametrize("value", ["-0.1", "1"])
 def test_bad_cascade_rtol_is_refused(tmp_path, value):
     import subprocess

@@ -15,7 +15,7 @@
    all the same); -adh_attach griffith a fourth buffer, of p (its limits are kept over G);
    -adh_criterion_certify the slots of its front's cache (one PetscInt; its entries, about 1 kB a
    front point, go with the front, not the grid, and are not counted); -adh_cascade_apart its
-   marks and their widened band (2 bytes). Each rank also holds about
+   marks and their widened band (2 bytes); -adh_cascade_single the float transform array (4). Each rank also holds about
    50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solver/solverimpl.h"
@@ -30,7 +30,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 16.0 + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 16.0 + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
 }
 

@@ -100,6 +100,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
+  PetscCall(PetscOptionsBool("-adh_cascade_single", "The solves that stop at -adh_cascade_rtol apply the compliance and the preconditioner in single precision (float transforms: half the bytes to move; periodic cells); the last solve of a step stays in double", "AdhSolver", s->cascade_single, &s->cascade_single, NULL));
   PetscCall(PetscOptionsInt("-adh_cascade_apart", "Points may join in a set update that lets others go, where they lie more than this many grid spacings from every point let go in it (0: joins only in an update that lets nothing go, the exact cascade)", "AdhSolver", s->cascade_apart, &s->cascade_apart, NULL));
   PetscCall(PetscOptionsReal("-adh_cascade_rtol", "Solves between set updates of a step stop at this relative residual, and the set is updated on their pressures (0: every solve to -adh_ksp_rtol); a set that stands on one is solved to -adh_ksp_rtol and tested again. Fewer KSP iterations; the sets along the way may differ from the exact cascade's", "AdhSolver", s->cascade_rtol, &s->cascade_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));

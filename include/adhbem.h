@@ -131,6 +131,7 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetRowNormBound(Mat, PetscReal *);
 PETSC_EXTERN PetscErrorCode MatAdhComplianceHasDirectLayout(Mat, PetscBool *);
 PETSC_EXTERN PetscErrorCode MatAdhComplianceMultOnSet(Mat, PetscInt n, const PetscInt local[], Vec xC, Vec yC);
 PETSC_EXTERN PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat, PetscBool);
+PETSC_EXTERN PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat, PetscInt *);
 /* K + c0 (1 1^T)/N: a periodic compliance whose mean mode has the compliance c0 (> 0), which makes
    every K_CC positive definite, the whole cell included; its eigenvalues are K's on mean-free
    vectors and c0. */

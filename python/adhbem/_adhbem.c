@@ -83,7 +83,7 @@ static PyObject *py_compliance_info(PyObject *self, PyObject *args)
 {
   PyObject *pymat;
   PetscReal lmin, rho;
-  PetscInt  count, Nx, Ny;
+  PetscInt  count, single, Nx, Ny;
   Mat       K;
 
   if (!PyArg_ParseTuple(args, "O", &pymat)) return NULL;
@@ -92,55 +92,68 @@ static PyObject *py_compliance_info(PyObject *self, PyObject *args)
   PyPetscCall(MatAdhComplianceGetLambdaMin(K, &lmin));
   PyPetscCall(MatAdhComplianceGetRowNormBound(K, &rho));
   PyPetscCall(MatAdhComplianceGetMultCount(K, &count));
+  PyPetscCall(MatAdhComplianceGetSingleMultCount(K, &single));
   PyPetscCall(MatAdhComplianceGetGridSize(K, &Nx, &Ny));
-  return Py_BuildValue("{s:d,s:d,s:n,s:n,s:n}", "lambda_min", (double)lmin, "row_norm_bound", (double)rho, "mult_count", (Py_ssize_t)count, "Nx", (Py_ssize_t)Nx, "Ny", (Py_ssize_t)Ny);
+  return Py_BuildValue("{s:d,s:d,s:n,s:n,s:n,s:n}", "lambda_min", (double)lmin, "row_norm_bound", (double)rho, "mult_count", (Py_ssize_t)count, "single_mult_count", (Py_ssize_t)single, "Nx", (Py_ssize_t)Nx, "Ny", (Py_ssize_t)Ny);
 }
 
 /* y = R K R^T x for the set of x's nonzero local points, through MatAdhComplianceMultOnSet, in
    single precision or double (for the tests of the single-precision transforms). */
-static PyObject *py_compliance_mult_on_set(PyObject *self, PyObject *args)
+static PetscErrorCode MultOnNonzeros(Mat K, Vec x, PetscBool single, Vec *y)
 {
-  PyObject          *pymat, *pyx;
-  int                single;
-  Mat                K;
-  Vec                x, y, xC, yC;
   const PetscScalar *xa, *ca;
   PetscScalar       *ya, *xc;
   PetscInt           n, m = 0, k, *local;
+  PetscBool          direct;
+  Vec                xC, yC;
+  PetscErrorCode     ierr;
+
+  PetscFunctionBegin;
+  PetscCall(MatAdhComplianceHasDirectLayout(K, &direct));
+  PetscCheck(direct, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "compliance_mult_on_set needs a periodic compliance");
+  PetscCall(VecGetLocalSize(x, &n));
+  PetscCall(PetscMalloc1(n + 1, &local));
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (k = 0; k < n; k++)
+    if (xa[k] != 0.0) local[m++] = k;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, m, &xC));
+  PetscCall(VecDuplicate(xC, &yC));
+  PetscCall(VecGetArrayWrite(xC, &xc));
+  for (k = 0; k < m; k++) xc[k] = xa[local[k]];
+  PetscCall(VecRestoreArrayWrite(xC, &xc));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(MatAdhComplianceSetSinglePrecision(K, single));
+  ierr = MatAdhComplianceMultOnSet(K, m, local, xC, yC);
+  PetscCall(MatAdhComplianceSetSinglePrecision(K, PETSC_FALSE));
+  PetscCall(ierr);
+  PetscCall(VecDuplicate(x, y));
+  PetscCall(VecSet(*y, 0.0));
+  PetscCall(VecGetArray(*y, &ya));
+  PetscCall(VecGetArrayRead(yC, &ca));
+  for (k = 0; k < m; k++) ya[local[k]] = ca[k];
+  PetscCall(VecRestoreArrayRead(yC, &ca));
+  PetscCall(VecRestoreArray(*y, &ya));
+  PetscCall(VecDestroy(&xC));
+  PetscCall(VecDestroy(&yC));
+  PetscCall(PetscFree(local));
+  PetscFunctionReturn(0);
+}
+
+static PyObject *py_compliance_mult_on_set(PyObject *self, PyObject *args)
+{
+  PyObject *pymat, *pyx, *result;
+  int       single;
+  Mat       K;
+  Vec       x, y = NULL;
 
   if (!PyArg_ParseTuple(args, "OOp", &pymat, &pyx, &single)) return NULL;
   K = PyPetscMat_Get(pymat);
   x = PyPetscVec_Get(pyx);
   if (!K || !x) return NULL;
-  PyPetscCall(VecGetLocalSize(x, &n));
-  PyPetscCall(PetscMalloc1(n + 1, &local));
-  PyPetscCall(VecGetArrayRead(x, &xa));
-  for (k = 0; k < n; k++)
-    if (xa[k] != 0.0) local[m++] = k;
-  PyPetscCall(VecCreateSeq(PETSC_COMM_SELF, m, &xC));
-  PyPetscCall(VecDuplicate(xC, &yC));
-  PyPetscCall(VecGetArrayWrite(xC, &xc));
-  for (k = 0; k < m; k++) xc[k] = xa[local[k]];
-  PyPetscCall(VecRestoreArrayWrite(xC, &xc));
-  PyPetscCall(VecRestoreArrayRead(x, &xa));
-  PyPetscCall(MatAdhComplianceSetSinglePrecision(K, single ? PETSC_TRUE : PETSC_FALSE));
-  PyPetscCall(MatAdhComplianceMultOnSet(K, m, local, xC, yC));
-  PyPetscCall(MatAdhComplianceSetSinglePrecision(K, PETSC_FALSE));
-  PyPetscCall(VecDuplicate(x, &y));
-  PyPetscCall(VecSet(y, 0.0));
-  PyPetscCall(VecGetArray(y, &ya));
-  PyPetscCall(VecGetArrayRead(yC, &ca));
-  for (k = 0; k < m; k++) ya[local[k]] = ca[k];
-  PyPetscCall(VecRestoreArrayRead(yC, &ca));
-  PyPetscCall(VecRestoreArray(y, &ya));
-  PyPetscCall(VecDestroy(&xC));
-  PyPetscCall(VecDestroy(&yC));
-  PyPetscCall(PetscFree(local));
-  {
-    PyObject *result = PyPetscVec_New(y);
-    PyPetscCall(VecDestroy(&y));
-    return result;
-  }
+  PyPetscCall(MultOnNonzeros(K, x, single ? PETSC_TRUE : PETSC_FALSE, &y));
+  result = PyPetscVec_New(y);
+  PyPetscCall(VecDestroy(&y));
+  return result;
 }
 
 static PyObject *py_love(PyObject *self, PyObject *args)

@@ -122,8 +122,9 @@ def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavele
 
 
 def compliance_info(K):
-    """dict(lambda_min=..., row_norm_bound=..., mult_count=...) of a compliance Mat: a lower bound on
-    the eigenvalues of every K_CC, an upper bound on the 2-norm of every row, the multiplies so far."""
+    """dict(lambda_min=..., row_norm_bound=..., mult_count=..., single_mult_count=...) of a compliance
+    Mat: a lower bound on the eigenvalues of every K_CC, an upper bound on the 2-norm of every row,
+    the multiplies so far, and how many of them ran in single precision (-adh_cascade_single)."""
     return _adhbem.compliance_info(K)
 
 

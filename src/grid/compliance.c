@@ -21,8 +21,9 @@ const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOU
 
 /* A distributed in-place r2c transform of one size with its array, plans and (where the grid's
    rows are not FFTW's) the redistribution. The operators of one grid share it (the compliance and
-   the stiffness of a periodic cell: one array, one pair of plans); only one multiply runs at a time.
-   The grid holds a reference and each operator one. */
+   the stiffness of a periodic cell: one array, one pair of plans, and their single-precision twins
+   once asked for); only one multiply runs at a time. The grid holds a reference and each operator
+   one. */
 struct _n_AdhTransform {
   PetscInt   refct;
   ptrdiff_t  n0, n1;                                  /* transform size: rows (y), columns (x) */
@@ -32,7 +33,8 @@ struct _n_AdhTransform {
   PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
   double    *data;                                    /* in-place transform array */
   fftw_plan  forward, backward;
-  unsigned   flags;                                   /* the planner's effort the plans were made with */
+  unsigned   flags;                                   /* the planner's effort the plans were made with, */
+  double     timelimit;                               /* and FFTW's time limit for planning */
   float     *fdata;                                   /* the same transform in single precision (MatAdhComplianceSetSinglePrecision): */
   fftwf_plan fforward, fbackward;                     /* made on first use, NULL before */
   Vec        xfft;                                    /* physical values in FFTW's row distribution */
@@ -73,7 +75,7 @@ typedef struct {
   PetscReal    lambda_min, diagonal;
   PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
   PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
-  PetscInt     nmult;
+  PetscInt     nmult, nmult_single;                   /* multiplies so far, and of them in single precision */
   PetscBool    single;                                /* MatAdhComplianceMultOnSet in single precision */
 } Compliance;
 
@@ -214,21 +216,34 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 static PetscErrorCode EnsureSingle(AdhTransform t, MPI_Comm comm)
 {
   ptrdiff_t alloc, ln0, l0s, ln1, l1s;
+  PetscBool ok;
 
   PetscFunctionBegin;
-  if (t->fdata) PetscFunctionReturn(0);
-  alloc = fftwf_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, comm, &ln0, &l0s, &ln1, &l1s);
-  PetscCheck(ln0 == t->local_n0 && l0s == t->local_0_start && ln1 == t->local_n1 && l1s == t->local_1_start, PETSC_COMM_SELF, PETSC_ERR_LIB, "FFTW-MPI distributes the single-precision transform otherwise than the double one");
-  t->fdata = (float *)fftwf_alloc_complex(PetscMax(alloc, 1));
-  PetscCheck(t->fdata, PETSC_COMM_SELF, PETSC_ERR_MEM, "FFTW could not allocate %td single-precision complex values (out of memory?)", alloc);
-  if (t->serial) {
-    t->fforward  = fftwf_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->fdata, (fftwf_complex *)t->fdata, t->flags);
-    t->fbackward = fftwf_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftwf_complex *)t->fdata, t->fdata, t->flags);
-  } else {
-    t->fforward  = fftwf_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->fdata, (fftwf_complex *)t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_OUT);
-    t->fbackward = fftwf_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftwf_complex *)t->fdata, t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_IN);
+  if (t->fforward && t->fbackward) PetscFunctionReturn(0);
+  alloc    = fftwf_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, comm, &ln0, &l0s, &ln1, &l1s);
+  ok       = (PetscBool)(ln0 == t->local_n0 && l0s == t->local_0_start && ln1 == t->local_n1 && l1s == t->local_1_start);
+  t->fdata = ok ? (float *)fftwf_alloc_complex(PetscMax(alloc, 1)) : NULL;
+  ok       = (PetscBool)(ok && t->fdata);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_BOOL, MPI_LAND, comm)); /* every rank plans, or none */
+  if (ok) {
+    fftwf_set_timelimit(t->timelimit);
+    if (t->serial) {
+      t->fforward  = fftwf_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->fdata, (fftwf_complex *)t->fdata, t->flags);
+      t->fbackward = fftwf_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftwf_complex *)t->fdata, t->fdata, t->flags);
+    } else {
+      t->fforward  = fftwf_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->fdata, (fftwf_complex *)t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_OUT);
+      t->fbackward = fftwf_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftwf_complex *)t->fdata, t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_IN);
+    }
+    ok = (PetscBool)(t->fforward && t->fbackward);
   }
-  PetscCheck(t->fforward && t->fbackward, comm, PETSC_ERR_LIB, "FFTW could not plan a single-precision %td x %td transform", t->n1, t->n0);
+  if (!ok) { /* nothing half-made stays behind */
+    if (t->fforward) fftwf_destroy_plan(t->fforward);
+    if (t->fbackward) fftwf_destroy_plan(t->fbackward);
+    fftwf_free(t->fdata);
+    t->fforward = t->fbackward = NULL;
+    t->fdata                   = NULL;
+  }
+  PetscCheck(ok, comm, PETSC_ERR_LIB, "FFTW could not allocate or plan a single-precision %td x %td transform in the double one's layout", t->n1, t->n0);
   PetscFunctionReturn(0);
 }
 
@@ -268,6 +283,7 @@ static PetscErrorCode ConvolveSingle(Mat K, Compliance *c)
   fftwf_execute(c->t->fbackward);
   PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
   c->nmult++;
+  c->nmult_single++;
   PetscCall(PetscLogFlops(4.0 * ncomplex));
   PetscFunctionReturn(0);
 }
@@ -282,6 +298,7 @@ PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
 
   PetscFunctionBegin;
   PetscCall(GetCompliance(K, "MatAdhComplianceSetSinglePrecision", &c, &mean));
+  PetscCheck(!single || !c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceSetSinglePrecision: single precision is for MatAdhComplianceMultOnSet, which needs the grid's rows to be the transform's (a periodic grid)");
   if (single) PetscCall(EnsureSingle(c->t, c->comm));
   c->single = single;
   PetscFunctionReturn(0);
@@ -591,7 +608,8 @@ static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt 
        each rank times its own trials, and a limit would let ranks take different planning paths
        into different collectives (a deadlock). */
     fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-    t->flags = PlannerFlag(effort);
+    t->flags     = PlannerFlag(effort);
+    t->timelimit = size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT;
     PetscCall(PlanTransform(t, grid->comm, size, t->flags, layout));
     if (!t->forward || !t->backward) { /* nothing half-made stays behind */
       const ptrdiff_t n0 = t->n0, n1 = t->n1;
@@ -783,5 +801,16 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   *count = c->nmult;
+  PetscFunctionReturn(0);
+}
+
+/* How many of those ran in single precision (MatAdhComplianceSetSinglePrecision). */
+PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat K, PetscInt *count)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(K, &c));
+  *count = c->nmult_single;
   PetscFunctionReturn(0);
 }

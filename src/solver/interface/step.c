@@ -312,6 +312,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   const PetscScalar *xa, *ha = NULL, *ta = NULL;
   PetscReal          tu;
   PetscBool          field, single;
+  PetscErrorCode     ierr;
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
@@ -352,18 +353,20 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous) && s->attach != ADH_ATTACH_GRIFFITH);
   s->attach_rnorm   = PETSC_MAX_REAL;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
-  /* -adh_cascade_single: a loose solve's operators in single precision (the set straight into the
-     transforms: a periodic grid); its rounding, about 1e-7, lies far below its tolerance */
-  single = (PetscBool)(s->solve_loose && s->cascade_single && s->direct_set);
+  /* -adh_cascade_single: a loose solve's operators in single precision (a periodic cell, whose set
+     goes straight into the transforms); its rounding, about 1e-7, lies far below its tolerance.
+     Back to double whatever the solve returns: no later solve may inherit it. */
+  single = (PetscBool)(s->solve_loose && s->cascade_single && s->direct_set && s->boundary == ADH_BOUNDARY_PERIODIC);
   if (single) {
     PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_TRUE));
     PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_TRUE));
   }
-  PetscCall(KSPSolve(s->ksp, s->bC, s->pC));
+  ierr = KSPSolve(s->ksp, s->bC, s->pC);
   if (single) {
     PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_FALSE));
     PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_FALSE));
   }
+  PetscCall(ierr);
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;

@@ -85,43 +85,51 @@ static inline ptrdiff_t MultIndex(const Compliance *c, ptrdiff_t a, ptrdiff_t k0
   return c->t->serial ? k0 * c->t->local_n1 + a : a * c->nhalf + k0;
 }
 
-/* Forward transform of the array, the multiplier, backward transform. */
-static PetscErrorCode Convolve(Mat K, Compliance *c)
-{
-  fftw_complex *spec = (fftw_complex *)c->t->data;
-  ptrdiff_t     a, k0, ncomplex = c->t->local_n1 * c->t->n0;
+/* The multiplier applied to a spectrum of complex type T (double or float) in the transform's
+   layout: serial, rows ky = k0 of n1/2 + 1 modes kx (row n0 - k0 has row k0's multipliers);
+   transposed, columns of n0 modes ky per local kx. */
+#define ADH_APPLY_MULTIPLIER(T, spec) \
+  do { \
+    ptrdiff_t a_, k0_; \
+    if (c->t->serial) \
+      for (k0_ = 0; k0_ < c->t->n0; k0_++) { \
+        T               *row_ = (spec) + k0_ * c->t->local_n1; \
+        const PetscReal *m_   = c->multiplier + (k0_ <= c->t->n0 / 2 ? k0_ : c->t->n0 - k0_) * c->t->local_n1; \
+        for (a_ = 0; a_ < c->t->local_n1; a_++) { \
+          row_[a_][0] *= m_[a_]; \
+          row_[a_][1] *= m_[a_]; \
+        } \
+      } \
+    else \
+      for (a_ = 0; a_ < c->t->local_n1; a_++) { \
+        T               *col_ = (spec) + a_ * c->t->n0; \
+        const PetscReal *m_   = c->multiplier + a_ * c->nhalf; \
+        for (k0_ = 0; k0_ < c->t->n0; k0_++) { \
+          const PetscReal mk_ = m_[k0_ <= c->t->n0 / 2 ? k0_ : c->t->n0 - k0_]; \
+          col_[k0_][0] *= mk_; \
+          col_[k0_][1] *= mk_; \
+        } \
+      } \
+  } while (0)
 
+/* Forward transform of the array, the multiplier, backward transform: in double, or in single
+   precision on the float twin (MatAdhComplianceSetSinglePrecision). */
+static PetscErrorCode Convolve(Mat K, Compliance *c, PetscBool single)
+{
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
-  fftw_execute(c->t->forward);
+  if (single) fftwf_execute(c->t->fforward);
+  else fftw_execute(c->t->forward);
   PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
-  if (c->t->serial) /* rows ky = k0 of n1/2 + 1 modes kx; row n0 - k0 has row k0's multipliers */
-    for (k0 = 0; k0 < c->t->n0; k0++) {
-      fftw_complex    *row = spec + k0 * c->t->local_n1;
-      const PetscReal *m   = c->multiplier + (k0 <= c->t->n0 / 2 ? k0 : c->t->n0 - k0) * c->t->local_n1;
-      for (a = 0; a < c->t->local_n1; a++) {
-        row[a][0] *= m[a];
-        row[a][1] *= m[a];
-      }
-    }
-  else
-    for (a = 0; a < c->t->local_n1; a++) {
-      fftw_complex    *col = spec + a * c->t->n0;
-      const PetscReal *m   = c->multiplier + a * c->nhalf;
-      for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-        col[k0][0] *= m[k0];
-        col[k0][1] *= m[k0];
-      }
-      for (; k0 < c->t->n0; k0++) {
-        col[k0][0] *= m[c->t->n0 - k0];
-        col[k0][1] *= m[c->t->n0 - k0];
-      }
-    }
+  if (single) ADH_APPLY_MULTIPLIER(fftwf_complex, (fftwf_complex *)c->t->fdata);
+  else ADH_APPLY_MULTIPLIER(fftw_complex, (fftw_complex *)c->t->data);
   PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
-  fftw_execute(c->t->backward);
+  if (single) fftwf_execute(c->t->fbackward);
+  else fftw_execute(c->t->backward);
   PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
   c->nmult++;
-  PetscCall(PetscLogFlops(4.0 * ncomplex));
+  if (single) c->nmult_single++;
+  PetscCall(PetscLogFlops(4.0 * c->t->local_n1 * c->t->n0));
   PetscFunctionReturn(0);
 }
 
@@ -146,7 +154,7 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
     PetscCall(PetscArrayzero(c->t->data + r * c->t->stride + c->Nx, c->t->stride - c->Nx));
   }
   PetscCall(VecRestoreArrayRead(c->t->toFFT ? c->t->xfft : x, &xa));
-  PetscCall(Convolve(K, c));
+  PetscCall(Convolve(K, c, PETSC_FALSE));
   PetscCall(VecGetArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
   for (r = 0; r < c->t->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->t->data + r * c->t->stride, c->Nx));
   PetscCall(VecRestoreArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
@@ -247,47 +255,6 @@ static PetscErrorCode EnsureSingle(AdhTransform t, MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
-/* Convolve() in single precision, on t->fdata (the multiplier rounded to float as it is applied). */
-static PetscErrorCode ConvolveSingle(Mat K, Compliance *c)
-{
-  fftwf_complex *spec = (fftwf_complex *)c->t->fdata;
-  ptrdiff_t      a, k0, ncomplex = c->t->local_n1 * c->t->n0;
-
-  PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
-  fftwf_execute(c->t->fforward);
-  PetscCall(PetscLogEventEnd(ADH_FFTForward, K, 0, 0, 0));
-  if (c->t->serial)
-    for (k0 = 0; k0 < c->t->n0; k0++) {
-      fftwf_complex   *row = spec + k0 * c->t->local_n1;
-      const PetscReal *m   = c->multiplier + (k0 <= c->t->n0 / 2 ? k0 : c->t->n0 - k0) * c->t->local_n1;
-      for (a = 0; a < c->t->local_n1; a++) {
-        row[a][0] *= (float)m[a];
-        row[a][1] *= (float)m[a];
-      }
-    }
-  else
-    for (a = 0; a < c->t->local_n1; a++) {
-      fftwf_complex   *col = spec + a * c->t->n0;
-      const PetscReal *m   = c->multiplier + a * c->nhalf;
-      for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-        col[k0][0] *= (float)m[k0];
-        col[k0][1] *= (float)m[k0];
-      }
-      for (; k0 < c->t->n0; k0++) {
-        col[k0][0] *= (float)m[c->t->n0 - k0];
-        col[k0][1] *= (float)m[c->t->n0 - k0];
-      }
-    }
-  PetscCall(PetscLogEventBegin(ADH_FFTBackward, K, 0, 0, 0));
-  fftwf_execute(c->t->fbackward);
-  PetscCall(PetscLogEventEnd(ADH_FFTBackward, K, 0, 0, 0));
-  c->nmult++;
-  c->nmult_single++;
-  PetscCall(PetscLogFlops(4.0 * ncomplex));
-  PetscFunctionReturn(0);
-}
-
 /* Whether MatAdhComplianceMultOnSet applies K in single precision: float transforms, half the
    bytes to move, for solves that stop at a loose tolerance (-adh_cascade_single). Collective
    when it turns single precision on (the float plans are made then). */
@@ -332,8 +299,7 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
     else data[local[k] + r * (c->t->stride - c->Nx)] = PetscRealPart(xa[k]);
   }
   PetscCall(VecRestoreArrayRead(xC, &xa));
-  if (c->single) PetscCall(ConvolveSingle(K, c));
-  else PetscCall(Convolve(K, c));
+  PetscCall(Convolve(K, c, c->single));
   PetscCall(VecGetArrayWrite(yC, &ya));
   for (k = 0, r = 0; k < n; k++) {
     while (local[k] >= (r + 1) * c->Nx) r++;

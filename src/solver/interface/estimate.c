@@ -8,11 +8,13 @@
    contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds u and G (16) and the
-   front's links over the rows each rank looks at (one PetscInt), and per rank the rows other
-   ranks own among those (three buffers of u, h and G, and the links): at most 2 max(3, ceil(R))
-   rows of Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted
-   all the same); -adh_attach griffith a fourth buffer, of p (its limits are kept over G);
+   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds G (8), a copy of the
+   contact flags (1), u = K p (8) where the profile may have points without a face (a punch, a
+   file or an array; the openings are read from g elsewhere) and the front's links over the rows
+   each rank looks at (one PetscInt), and per rank the rows other ranks own among those (three
+   buffers of the openings, h and G, the flags and the links): at most 2 max(3, ceil(R)) rows of
+   Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted all the
+   same); -adh_attach griffith a fourth buffer, of p (its limits are kept over G);
    -adh_criterion_certify the slots of its front's cache (one PetscInt; its entries, about 1 kB a
    front point, go with the front, not the grid, and are not counted); -adh_cascade_apart its
    marks and their widened band (2 bytes); -adh_cascade_single the float transform array (4). Each rank also holds about
@@ -26,12 +28,14 @@ static const PetscLogDouble AdhRankBaseBytes = 50e6;
    crack-closure's rows beyond the rank's own (see above). */
 static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
-  PetscBool cc, griffith;
+  const AdhIndenterType t = s->indenter.type;
+  const PetscBool       faceless = (PetscBool)(t == ADH_INDENTER_PUNCH || t == ADH_INDENTER_FILE || t == ADH_INDENTER_ARRAY);
+  PetscBool             cc, griffith;
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 16.0 + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
-  *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
+  *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
 }
 
 /* The estimate for the whole run (all ranks) and for the ranks on this node. */

@@ -34,9 +34,9 @@
 /* The rows a rank looks at of one grid vector: the vector (its own rows) and the buffer of the
    rows other ranks own (FetchRows), and, while in use, the row pointers (GetRows). */
 typedef struct {
-  Vec                v, ghost;
-  const PetscScalar *own, *far;
-  PetscScalar      **store;
+  Vec                v;
+  const PetscScalar *own;
+  PetscScalar       *far, **store;
 } FetchedRows;
 
 /* What the evaluations of one contact set share, kept with the certified stop (which evaluates a
@@ -65,9 +65,15 @@ typedef struct {
      rows, not copies of the grid vectors (24 B a point less, 32 under griffith). rowmap[r] of row
      gys + r: its local row in the grid vector (>= 0), or -1 - its row in the buffer. */
   PetscInt   *rowmap, nghost, nx;
-  VecScatter  fetch;        /* grid vector -> the other ranks' rows among them */
-  Vec         u, G;         /* u = K p (NaN on the set), G per front point (NaN elsewhere) */
-  FetchedRows U, H, Gf, P;  /* the rows of u, h, G and p (griffith) */
+  PetscSF     fetch;        /* a rank's rows (roots) -> the other ranks' rows among them (leaves) */
+  MPI_Datatype row_scalars, row_flags; /* a row of a grid vector, of s->in_set */
+  /* An opening is the gap g of an open point, which the detach test computes for every point
+     (g = h - d + u, u = K p), so its rows are read from g. Where the indenter has no face (h =
+     PETSC_INFINITY, outside a punch) the opening is measured from the face extended flat, which
+     needs u there: only for such a profile, faceless holds g on the faces and u off them. */
+  Vec         faceless, G;  /* G per front point (NaN elsewhere) */
+  FetchedRows O, H, Gf, P;  /* the rows of the openings (g, or faceless), h, G and p (griffith) */
+  char       *set_before, *far_set, **set_store; /* the set as the openings were computed (FetchSetRows): own points, other ranks' rows, row pointers */
   PetscInt   *seen;         /* the walk along the front within the disk: offsets (2 width + 1)^2 met, */
   PetscInt   *qi, *qj;      /* and the offsets reached, in the order met */
   PetscInt   *col, *row;    /* the walk's columns and rows in the fetched rows, 2 width + 1 each */
@@ -75,7 +81,7 @@ typedef struct {
                                rows and columns as bits (FrontLinks) */
   PetscInt    stamp;        /* seen[o] == stamp: offset o met in the current walk */
   PetscInt    h_version;    /* the profile H's rows were fetched from (s->profile_version; 0: none yet) */
-  PetscBool   decided;      /* u, U's rows and s->g belong to the iterate of the last decision */
+  PetscBool   decided;      /* s->g and the openings' and set's rows belong to the iterate of the last decision */
   /* the front's cache (with the certified stop): slot[k] of local point k is its FrontEntry, -1
      not made yet, -2 in the set but not on the front; valid for the set cache_set */
   PetscBool   cache;
@@ -98,8 +104,9 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   CrackClosure   *cc = (CrackClosure *)s->crdata;
   const AdhGrid   g  = s->grid;
   const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscInt        ys, ym, *rows, side;
-  IS              from;
+  PetscInt        ys, ym, side, *rowstart;
+  PetscSFNode    *owner;
+  PetscMPIInt     size, rank;
 
   PetscFunctionBegin;
   if (cc->fetch) PetscFunctionReturn(0);
@@ -122,7 +129,13 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
     cc->gys = PetscMax(0, ys - cc->width);
     cc->gym = PetscMin(g->Ny, ys + ym + cc->width) - cc->gys;
   }
-  PetscCall(PetscMalloc1(cc->gym, &rows));
+  /* the first row of every rank, to find the owner of each row fetched */
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(PetscMalloc1(size + 1, &rowstart));
+  PetscCallMPI(MPI_Allgather(&ys, 1, MPIU_INT, rowstart, 1, MPIU_INT, s->comm));
+  rowstart[size] = g->Ny;
+  PetscCall(PetscMalloc1(cc->gym, &owner));
   PetscCall(PetscMalloc1(cc->gym, &cc->rowmap));
   cc->nx     = g->Nx;
   cc->nghost = 0;
@@ -130,19 +143,24 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
     const PetscInt b = ((cc->gys + r) % g->Ny + g->Ny) % g->Ny;
     if (b >= ys && b < ys + ym) cc->rowmap[r] = b - ys;
     else {
-      rows[cc->nghost] = b;
-      cc->rowmap[r]    = -1 - cc->nghost++;
+      PetscMPIInt o = 0;
+      while (rowstart[o + 1] <= b) o++;
+      owner[cc->nghost].rank  = o;
+      owner[cc->nghost].index = b - rowstart[o];
+      cc->rowmap[r]           = -1 - cc->nghost++;
     }
   }
-  PetscCall(ISCreateBlock(PETSC_COMM_SELF, g->Nx, cc->nghost, rows, PETSC_OWN_POINTER, &from));
-  PetscCall(AdhGridCreateVector(g, &cc->u));
-  PetscCall(VecDuplicate(cc->u, &cc->G));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, cc->nghost * g->Nx, &cc->U.ghost));
-  PetscCall(VecDuplicate(cc->U.ghost, &cc->H.ghost));
-  PetscCall(VecDuplicate(cc->U.ghost, &cc->Gf.ghost));
-  PetscCall(VecScatterCreate(cc->u, from, cc->U.ghost, NULL, &cc->fetch));
-  PetscCall(ISDestroy(&from));
-  PetscCall(PetscMalloc4(cc->gym, &cc->U.store, cc->gym, &cc->H.store, cc->gym, &cc->Gf.store, cc->gym, &cc->P.store));
+  PetscCall(PetscFree(rowstart));
+  PetscCall(PetscSFCreate(s->comm, &cc->fetch));
+  PetscCall(PetscSFSetGraph(cc->fetch, ym, cc->nghost, NULL, PETSC_COPY_VALUES, owner, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(cc->fetch));
+  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)g->Nx, MPIU_SCALAR, &cc->row_scalars));
+  PetscCallMPI(MPI_Type_commit(&cc->row_scalars));
+  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)g->Nx, MPI_CHAR, &cc->row_flags));
+  PetscCallMPI(MPI_Type_commit(&cc->row_flags));
+  PetscCall(AdhGridCreateVector(g, &cc->G));
+  PetscCall(PetscMalloc5(cc->nghost * g->Nx + 1, &cc->O.far, cc->nghost * g->Nx + 1, &cc->H.far, cc->nghost * g->Nx + 1, &cc->Gf.far, cc->nghost * g->Nx + 1, &cc->far_set, s->nlocal + 1, &cc->set_before));
+  PetscCall(PetscMalloc5(cc->gym, &cc->O.store, cc->gym, &cc->H.store, cc->gym, &cc->Gf.store, cc->gym, &cc->P.store, cc->gym, &cc->set_store));
   side = 2 * cc->width + 1;
   PetscCall(PetscCalloc3(side * side, &cc->seen, side * side, &cc->qi, side * side, &cc->qj));
   PetscCall(PetscMalloc2(side, &cc->col, side, &cc->row));
@@ -154,10 +172,53 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
    v itself must not change while they are in use. */
 static PetscErrorCode FetchRows(CrackClosure *cc, Vec v, FetchedRows *f)
 {
+  const PetscScalar *va;
+
   PetscFunctionBegin;
   f->v = v;
-  PetscCall(VecScatterBegin(cc->fetch, v, f->ghost, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(cc->fetch, v, f->ghost, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(v, &va));
+  PetscCall(PetscSFBcastBegin(cc->fetch, cc->row_scalars, va, f->far, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(cc->fetch, cc->row_scalars, va, f->far, MPI_REPLACE));
+  PetscCall(VecRestoreArrayRead(v, &va));
+  PetscFunctionReturn(0);
+}
+
+/* The contact set (s->in_set) as the openings were computed: a copy of the rank's own points and
+   the other ranks' rows this rank looks at. It stays as it was when the detach test goes on to
+   griffith's limits after letting points go (-adh_cascade_apart): those points keep their pressure
+   for the limits, as in the state just solved. */
+static PetscErrorCode FetchSetRows(AdhSolver s, CrackClosure *cc)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(cc->set_before, s->in_set, s->nlocal));
+  PetscCall(PetscSFBcastBegin(cc->fetch, cc->row_flags, cc->set_before, cc->far_set, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(cc->fetch, cc->row_flags, cc->set_before, cc->far_set, MPI_REPLACE));
+  PetscFunctionReturn(0);
+}
+
+/* Those rows: rows[b][i] nonzero when (i, b) was in the set, as GetRows gives a vector's. */
+static PetscErrorCode GetSetRows(CrackClosure *cc, const char ***rows)
+{
+  PetscFunctionBegin;
+  for (PetscInt r = 0; r < cc->gym; r++) cc->set_store[r] = cc->rowmap[r] >= 0 ? cc->set_before + cc->rowmap[r] * cc->nx : cc->far_set + (-1 - cc->rowmap[r]) * cc->nx;
+  *rows = (const char **)(cc->set_store - cc->gys);
+  PetscFunctionReturn(0);
+}
+
+/* Whether the profile has points without a face (h = PETSC_INFINITY): then the openings' rows
+   need u there, kept in faceless (a grid vector only such a profile pays for). */
+static PetscErrorCode EnsureFaceless(AdhSolver s, CrackClosure *cc)
+{
+  const PetscScalar *ha;
+  PetscBool          any = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(s->h, &ha));
+  for (PetscInt k = 0; k < s->nlocal && !any; k++) any = (PetscBool)(PetscRealPart(ha[k]) >= PETSC_INFINITY);
+  PetscCall(VecRestoreArrayRead(s->h, &ha));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &any, 1, MPIU_BOOL, MPI_LOR, s->comm));
+  if (any && !cc->faceless) PetscCall(VecDuplicate(s->h, &cc->faceless));
+  if (!any) PetscCall(VecDestroy(&cc->faceless));
   PetscFunctionReturn(0);
 }
 
@@ -168,8 +229,7 @@ static PetscErrorCode GetRows(CrackClosure *cc, FetchedRows *f, const PetscScala
 
   PetscFunctionBegin;
   PetscCall(VecGetArrayRead(f->v, &f->own));
-  PetscCall(VecGetArrayRead(f->ghost, &f->far));
-  for (PetscInt r = 0; r < cc->gym; r++) f->store[r] = (PetscScalar *)(cc->rowmap[r] >= 0 ? f->own + cc->rowmap[r] * nx : f->far + (-1 - cc->rowmap[r]) * nx);
+  for (PetscInt r = 0; r < cc->gym; r++) f->store[r] = cc->rowmap[r] >= 0 ? (PetscScalar *)f->own + cc->rowmap[r] * nx : f->far + (-1 - cc->rowmap[r]) * nx;
   *rows = (const PetscScalar **)(f->store - cc->gys);
   PetscFunctionReturn(0);
 }
@@ -178,16 +238,16 @@ static PetscErrorCode RestoreRows(FetchedRows *f, const PetscScalar ***rows)
 {
   PetscFunctionBegin;
   PetscCall(VecRestoreArrayRead(f->v, &f->own));
-  PetscCall(VecRestoreArrayRead(f->ghost, &f->far));
   *rows = NULL;
   PetscFunctionReturn(0);
 }
 
-/* The opening of open point (hn, un) for a front point of profile hi at indentation d: where the
-   indenter has no face (hn infinite) it is measured from the front point's face extended flat. */
-static inline PetscReal Opening(PetscReal hn, PetscReal hi, PetscReal d, PetscReal un)
+/* The opening of open point n for a front point of profile hi at indentation d, from n's row
+   value on (its gap g_n = (h_n - d) + u_n): where the indenter has no face (h_n infinite) on is
+   u_n and the opening is measured from the front point's face extended flat. */
+static inline PetscReal Opening(PetscReal hn, PetscReal hi, PetscReal d, PetscReal on)
 {
-  return (hn >= PETSC_INFINITY ? hi : hn) - d + un;
+  return hn >= PETSC_INFINITY ? (hi - d) + on : on;
 }
 
 /* NaN marks points without a value (the set's openings, G off the front); PETSc 3.18's
@@ -219,7 +279,7 @@ static inline PetscBool OnGrid(const AdhGrid g, PetscBool wrap, PetscInt i, Pets
 /* The outward normal of the contact edge at set point (i, j), unnormalised: the sum of the offsets
    to the open points within ADH_NORMAL_RADIUS grid spacings (a disk cut by a straight edge gives
    its normal). Points off a free grid count as neither. */
-static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gym, const PetscScalar **ul, PetscInt i, PetscInt j, PetscReal n[2])
+static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, PetscInt gym, const char **sl, PetscInt i, PetscInt j, PetscReal n[2])
 {
   const PetscInt r = ADH_NORMAL_RADIUS;
 
@@ -233,7 +293,7 @@ static PetscErrorCode EdgeNormal(const AdhGrid g, PetscBool wrap, PetscInt gys, 
         PetscCheck(!OnGrid(g, wrap, i + di, j + dj), PETSC_COMM_SELF, PETSC_ERR_PLIB, "crack-closure: edge normal outside the fetched rows");
         continue;
       }
-      if (!IsNaN(PetscRealPart(ul[b][a]))) {
+      if (!sl[b][a]) {
         n[0] += di;
         n[1] += dj;
       }
@@ -485,7 +545,8 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar);
   const PetscReal    K00  = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  const PetscScalar *ta, **ul, **hl, **pl, **Gl;
+  const PetscScalar *ta, **ol, **hl, **pl, **Gl;
+  const char       **sl;
   PetscScalar       *Ga, *la;
   PetscReal          tu;
   PetscInt           ys, ym, gys = cc->gys, gym = cc->gym, i, j, k, a, b, nfront;
@@ -496,10 +557,11 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
     PetscCall(PetscObjectReference((PetscObject)cc->G));
     s->attach_limit = cc->G;
   }
-  if (!cc->P.ghost) PetscCall(VecDuplicate(cc->U.ghost, &cc->P.ghost));
+  if (!cc->P.far) PetscCall(PetscMalloc1(cc->nghost * g->Nx + 1, &cc->P.far));
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(FetchRows(cc, s->p, &cc->P));
-  PetscCall(GetRows(cc, &cc->U, &ul));
+  PetscCall(GetSetRows(cc, &sl));
+  PetscCall(GetRows(cc, &cc->O, &ol));
   PetscCall(GetRows(cc, &cc->H, &hl));
   PetscCall(GetRows(cc, &cc->P, &pl));
   PetscCall(VecGetArray(cc->G, &Ga));
@@ -510,14 +572,14 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
       PetscReal       normal[2], best = PETSC_MAX_REAL, tension = 0.0;
       PetscBool       beside = PETSC_FALSE;
       Ga[k] = NAN;
-      if (s->in_set[k] || hj >= PETSC_INFINITY) continue;
-      for (PetscInt n = 0; n < 4 && !beside; n++) beside = (PetscBool)(Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) && IsNaN(PetscRealPart(ul[b][a])));
+      if (cc->set_before[k] || hj >= PETSC_INFINITY) continue; /* points let go since the openings (-adh_cascade_apart) have none */
+      for (PetscInt n = 0; n < 4 && !beside; n++) beside = (PetscBool)(Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) && sl[b][a]);
       if (!beside) continue;
       /* the outward normal (towards the open side), as for a front point */
-      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
+      PetscCall(EdgeNormal(g, wrap, gys, gym, sl, i, j, normal));
       for (PetscInt n = 0; n < 4; n++) { /* the set neighbour closest to the inward normal (ties: the more tensile) */
         PetscReal along, p;
-        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) || !IsNaN(PetscRealPart(ul[b][a]))) continue;
+        if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b) || !sl[b][a]) continue;
         along = di[n] * normal[0] + dj[n] * normal[1];
         p     = PetscRealPart(pl[b][a]);
         if (along < best || (along == best && -p > tension)) {
@@ -525,7 +587,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
           tension = -p;
         }
       }
-      if (tension > 0) Ga[k] = tension * (hj - s->d + PetscRealPart(ul[j][i])) / 2.0;
+      if (tension > 0) Ga[k] = tension * PetscRealPart(ol[j][i]) / 2.0; /* ol: j's gap (it has a face) */
     }
   PetscCall(VecRestoreArray(cc->G, &Ga));
   PetscCall(RestoreRows(&cc->P, &pl));
@@ -551,7 +613,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
       PetscReal       sum, n, gap, margin;
       if (s->in_set[k] || IsNaN(PetscRealPart(Gl[j][i]))) continue;
       PetscCall(WindowMean(s, cc, wrap, Gl, i, j, NULL, ADH_WINDOW_BAND_LOW * dgamma, ADH_WINDOW_BAND_HIGH * dgamma, &sum, &n, &margin));
-      gap                         = PetscRealPart(hl[j][i]) - s->d + PetscRealPart(ul[j][i]);
+      gap                       = PetscRealPart(ol[j][i]); /* a front point has a face */
       cc->front_limit[nfront++] = sum > 0 ? PetscMax(0.0, gap * dgamma * n / sum) : PETSC_MAX_REAL;
     }
   PetscCall(RestoreRows(&cc->Gf, &Gl));
@@ -563,7 +625,7 @@ static PetscErrorCode GriffithLimits(AdhSolver s, CrackClosure *cc)
   PetscCall(VecRestoreArray(s->attach_limit, &la));
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(RestoreRows(&cc->H, &hl));
-  PetscCall(RestoreRows(&cc->U, &ul));
+  PetscCall(RestoreRows(&cc->O, &ol));
   s->attach_limit_current = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(ADH_AttachLimits, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -584,8 +646,9 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
   const AdhGrid      g  = s->grid;
   const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar); /* dgamma = chi Sigma^2 / (hx hy E*) */
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscScalar       *pa, *xa = NULL, *ua, *Ga;
-  const PetscScalar *ta, **ul, **hl, **Gl;
+  PetscScalar       *pa, *xa = NULL, *Ga;
+  const PetscScalar *ta, **ol, **hl, **Gl;
+  const char       **sl;
   PetscReal          tu, r = 0.0, gerr = 0.0, E = 0.0, ratio_in_doubt = PETSC_MAX_REAL;
   PetscInt           ys, ym, gys, gym, i, j, k, a, b, count = 0, doubt = 0;
 
@@ -597,23 +660,32 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
     PetscCall(MatAdhComplianceGetRowNormBound(s->K, &rho));
     gerr = rho * perr;
   }
-  /* u = K p and g = h - d + u; the set's points carry NaN in u: they have no opening. After a
-     certified stop p is the iterate the stop was decided on, whose u is at hand. */
-  if (!(cc->decided && s->certified_stop && !decision)) {
-    PetscCall(MatMult(s->K, s->p, cc->u));
-    PetscCall(VecWAXPY(s->g, 1.0, s->h, cc->u));
-    PetscCall(VecShift(s->g, -s->d));
-    PetscCall(VecGetArray(cc->u, &ua));
-    for (k = 0; k < s->nlocal; k++)
-      if (s->in_set[k]) ua[k] = NAN;
-    PetscCall(VecRestoreArray(cc->u, &ua));
-    PetscCall(FetchRows(cc, cc->u, &cc->U));
-  }
-  cc->decided = (PetscBool)(decision != NULL);
   if (cc->h_version != s->profile_version) { /* h changes only with the profile */
     PetscCall(FetchRows(cc, s->h, &cc->H));
+    PetscCall(EnsureFaceless(s, cc));
     cc->h_version = s->profile_version;
   }
+  /* u = K p and g = (h - d) + u, the openings' rows, and the set's. After a certified stop p is
+     the iterate the stop was decided on, whose g is at hand. */
+  if (!(cc->decided && s->certified_stop && !decision)) {
+    const PetscScalar *ha;
+    PetscScalar       *ga, *fa = NULL;
+    PetscCall(MatMult(s->K, s->p, s->g));
+    PetscCall(VecGetArrayRead(s->h, &ha));
+    PetscCall(VecGetArray(s->g, &ga));
+    if (cc->faceless) PetscCall(VecGetArrayWrite(cc->faceless, &fa));
+    for (k = 0; k < s->nlocal; k++) {
+      const PetscScalar u = ga[k];
+      ga[k] = (ha[k] - s->d) + u;
+      if (fa) fa[k] = PetscRealPart(ha[k]) >= PETSC_INFINITY ? u : ga[k];
+    }
+    if (fa) PetscCall(VecRestoreArrayWrite(cc->faceless, &fa));
+    PetscCall(VecRestoreArray(s->g, &ga));
+    PetscCall(VecRestoreArrayRead(s->h, &ha));
+    PetscCall(FetchRows(cc, cc->faceless ? cc->faceless : s->g, &cc->O));
+    PetscCall(FetchSetRows(s, cc));
+  }
+  cc->decided = (PetscBool)(decision != NULL);
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   gys = cc->gys;
   gym = cc->gym;
@@ -630,8 +702,9 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
      edge's normal. So the opening a front point gets is, by that shift, the one its neighbour
      along that axis has now: delta is the opening of the open neighbour closest to the normal
      (ties: the smaller opening). */
-  PetscCall(GetRows(cc, &cc->U, &ul));
+  PetscCall(GetRows(cc, &cc->O, &ol));
   PetscCall(GetRows(cc, &cc->H, &hl));
+  PetscCall(GetSetRows(cc, &sl));
   PetscCall(VecGetArray(s->p, &pa));
   PetscCall(VecGetArray(cc->G, &Ga));
   for (j = ys; j < ys + ym; j++)
@@ -647,7 +720,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
         const FrontEntry *e = &cc->entry[cc->slot[k]];
         for (PetscInt m = 0; m < e->ncand; m++) {
           const PetscInt  bb = gys + e->cand[m] / g->Nx, aa = e->cand[m] % g->Nx;
-          const PetscReal dn = Opening(PetscRealPart(hl[bb][aa]), hi, s->d, PetscRealPart(ul[bb][aa]));
+          const PetscReal dn = Opening(PetscRealPart(hl[bb][aa]), hi, s->d, PetscRealPart(ol[bb][aa]));
           if (m == 0 || dn < open) open = dn;
         }
         Ga[k] = ti * open / 2.0;
@@ -655,19 +728,18 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
         continue;
       }
       for (PetscInt n = 0; n < 4; n++) { /* the open 4-neighbours and their openings */
-        PetscReal un, hn;
+        PetscReal hn;
         if (!Neighbour(g, wrap, gys, gym, i, j, di[n], dj[n], &a, &b)) continue; /* off the grid: EdgeNormal checks the rows */
-        un = PetscRealPart(ul[b][a]);
-        if (IsNaN(un)) continue; /* in the set */
+        if (sl[b][a]) continue; /* in the set */
         hn             = PetscRealPart(hl[b][a]); /* PETSC_INFINITY (finite): no face there */
         dir[nopen]     = n;
-        delta[nopen++] = Opening(hn, hi, s->d, un);
+        delta[nopen++] = Opening(hn, hi, s->d, PetscRealPart(ol[b][a]));
       }
       if (!nopen) { /* not on the front */
         if (cc->cache) cc->slot[k] = -2;
         continue;
       }
-      PetscCall(EdgeNormal(g, wrap, gys, gym, ul, i, j, normal));
+      PetscCall(EdgeNormal(g, wrap, gys, gym, sl, i, j, normal));
       for (PetscInt m = 0; m < nopen; m++) {
         const PetscReal along = di[dir[m]] * normal[0] + dj[dir[m]] * normal[1];
         if (along > best || (along == best && delta[m] < open)) {
@@ -698,7 +770,7 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
     }
   PetscCall(VecRestoreArray(cc->G, &Ga));
   PetscCall(RestoreRows(&cc->H, &hl));
-  PetscCall(RestoreRows(&cc->U, &ul));
+  PetscCall(RestoreRows(&cc->O, &ol));
   PetscCall(FetchRows(cc, cc->G, &cc->Gf));
   if (decision) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &E, 1, MPIU_REAL, MPIU_MAX, s->comm));
 
@@ -795,15 +867,15 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   CrackClosure *cc = (CrackClosure *)s->crdata;
 
   PetscFunctionBegin;
-  PetscCall(VecDestroy(&cc->u));
+  PetscCall(VecDestroy(&cc->faceless));
   PetscCall(VecDestroy(&cc->G));
-  PetscCall(VecDestroy(&cc->U.ghost));
-  PetscCall(VecDestroy(&cc->H.ghost));
-  PetscCall(VecDestroy(&cc->Gf.ghost));
-  PetscCall(VecDestroy(&cc->P.ghost));
   PetscCall(PetscFree(cc->rowmap));
-  PetscCall(VecScatterDestroy(&cc->fetch));
-  PetscCall(PetscFree4(cc->U.store, cc->H.store, cc->Gf.store, cc->P.store));
+  PetscCall(PetscSFDestroy(&cc->fetch));
+  if (cc->row_scalars != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&cc->row_scalars));
+  if (cc->row_flags != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&cc->row_flags));
+  PetscCall(PetscFree5(cc->O.far, cc->H.far, cc->Gf.far, cc->far_set, cc->set_before));
+  PetscCall(PetscFree(cc->P.far));
+  PetscCall(PetscFree5(cc->O.store, cc->H.store, cc->Gf.store, cc->P.store, cc->set_store));
   PetscCall(PetscFree3(cc->seen, cc->qi, cc->qj));
   PetscCall(PetscFree2(cc->col, cc->row));
   PetscCall(PetscFree(cc->links));
@@ -822,6 +894,8 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cc));
+  cc->row_scalars      = MPI_DATATYPE_NULL;
+  cc->row_flags        = MPI_DATATYPE_NULL;
   s->crdata            = cc;
   s->crops.setup       = SetUp_CrackClosure;
   s->crops.evaluate    = Evaluate_CrackClosure;

@@ -130,6 +130,16 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscCheck(!message[0], PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_UNKNOWN_TYPE, "%s", message);
+  /* PETSc's initial guesses (KSPGuess: fischer, pod) keep vectors of one operator size, and the
+     contact set changes size at every set update: PETSc would stop deep inside the first solve
+     after one with "Incompatible vector local lengths" */
+  {
+    char      option[256];
+    PetscBool guess;
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%sadh_ksp_guess_type", prefix));
+    PetscCall(PetscOptionsHasName(NULL, NULL, option, &guess));
+    PetscCheck(!guess, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_INCOMP, "%s: PETSc's initial guesses (KSPGuess) need one operator size, and the contact set changes size at every set update; each solve starts from the pressures of the last one instead", option);
+  }
   PetscFunctionReturn(0);
 }
 

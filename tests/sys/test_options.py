@@ -105,12 +105,13 @@ def test_missing_options_file(tmp_path, ranks):
     ("-adh_ksp_gmres_restart", "Option -adh_ksp_gmres_restart is not read by the solver's KSP (cg)"),
     ("-ksp_rtol", "-ksp_rtol does nothing: the solver's KSP and PC options have the prefix adh_ (-adh_ksp_rtol)"),
     ("-pc_type", "-pc_type does nothing"),
+    ("-adh_ksp_guess_type", "-adh_ksp_guess_type: PETSc's initial guesses (KSPGuess) need one operator size"),
 ])
 def test_ksp_options_nothing_reads(tmp_path, option, says):
     """A misspelled option of the solver's KSP (or one of another KSP type), and PETSc's options
     without adhbem's prefix, which no KSP of adhbem's reads."""
     serial_only()
-    value = "none" if "pc_t" in option else "30" if "gmres" in option else "1e-8"
+    value = "none" if "pc_t" in option else "30" if "gmres" in option else "fischer" if "guess" in option else "1e-8"
     assert says in refused(tmp_path, *BASE, option, value)
 
 

@@ -6,6 +6,7 @@
 
 #include <petscdmda.h>
 #include <petscksp.h>
+#include <petscsf.h>
 
 PETSC_EXTERN PetscClassId ADH_CLASSID;
 PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits;
@@ -41,6 +42,7 @@ struct _n_AdhGrid {
   PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
   PetscReal fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
   AdhTransform transforms[2]; /* physical size and zero-padded (2Ny x 2Nx), made on first use */
+  MPI_Datatype row_types[2];  /* one row of scalars, of chars (AdhGridGetRowType), made on first use */
 };
 PETSC_EXTERN PetscErrorCode AdhTransformRelease_Private(AdhTransform *);
 
@@ -54,6 +56,12 @@ PETSC_EXTERN PetscErrorCode AdhGridDestroy(AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhGridGetOwnership(AdhGrid, PetscInt *ys, PetscInt *ym);
 /* The number of rows of every rank (an array of the communicator's size; PetscFree it). */
 PETSC_EXTERN PetscErrorCode AdhGridGetRowsPerRank(AdhGrid, PetscInt **ly);
+/* Other ranks' rows of grid data: a PetscSF with one root per row this rank owns and one leaf per
+   entry of rows[] (global rows that other ranks own; a row may be listed more than once), whose
+   unit is a whole row, the type AdhGridGetRowType() gives (MPIU_SCALAR for a grid vector's
+   array, MPI_CHAR for a byte per point; the grid keeps the type). */
+PETSC_EXTERN PetscErrorCode AdhGridCreateRowSF(AdhGrid, PetscInt nrows, const PetscInt rows[], PetscSF *);
+PETSC_EXTERN PetscErrorCode AdhGridGetRowType(AdhGrid, MPI_Datatype base, MPI_Datatype *row);
 /* A new Vec on the grid: the rows of this rank, block size Nx (a block per row; PETSc's HDF5
    viewer writes it as an (Ny, Nx) dataset). */
 PETSC_EXTERN PetscErrorCode AdhGridCreateVector(AdhGrid, Vec *);

@@ -14,6 +14,7 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   g->Lx = g->Ly = 1.0;
   g->fftw_effort = -1;
   g->fftw_timelimit = -2.0;
+  g->row_types[0] = g->row_types[1] = MPI_DATATYPE_NULL;
   *grid = g;
   PetscFunctionReturn(0);
 }
@@ -115,6 +116,49 @@ PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode AdhGridCreateRowSF(AdhGrid g, PetscInt nrows, const PetscInt rows[], PetscSF *sf)
+{
+  PetscInt    *ly, *start;
+  PetscMPIInt  size;
+  PetscSFNode *owner;
+
+  PetscFunctionBegin;
+  PetscCall(AdhGridGetRowsPerRank(g, &ly));
+  PetscCallMPI(MPI_Comm_size(g->comm, &size));
+  PetscCall(PetscMalloc1(size + 1, &start));
+  start[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) start[r + 1] = start[r] + ly[r];
+  PetscCall(PetscMalloc1(nrows, &owner));
+  for (PetscInt q = 0; q < nrows; q++) {
+    PetscMPIInt o = 0;
+    PetscCheck(rows[q] >= 0 && rows[q] < g->Ny, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Row %" PetscInt_FMT " is not on the grid of %" PetscInt_FMT " rows", rows[q], g->Ny);
+    while (start[o + 1] <= rows[q]) o++; /* ranks without rows are passed over */
+    owner[q].rank  = o;
+    owner[q].index = rows[q] - start[o];
+  }
+  PetscCall(PetscSFCreate(g->comm, sf));
+  PetscCall(PetscSFSetGraph(*sf, g->ym, nrows, NULL, PETSC_OWN_POINTER, owner, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(*sf));
+  PetscCall(PetscFree(start));
+  PetscCall(PetscFree(ly));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row)
+{
+  const PetscInt k = base == MPIU_SCALAR ? 0 : base == MPI_CHAR ? 1 : -1;
+
+  PetscFunctionBegin;
+  PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
+  PetscCheck(k >= 0, g->comm, PETSC_ERR_SUP, "A grid row of MPIU_SCALAR or MPI_CHAR only");
+  if (g->row_types[k] == MPI_DATATYPE_NULL) {
+    PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)g->Nx, base, &g->row_types[k]));
+    PetscCallMPI(MPI_Type_commit(&g->row_types[k]));
+  }
+  *row = g->row_types[k];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
 {
   PetscFunctionBegin;
@@ -155,6 +199,8 @@ PetscErrorCode AdhGridDestroy(AdhGrid *grid)
   if (!*grid) PetscFunctionReturn(0);
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[0]));
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[1]));
+  for (PetscInt k = 0; k < 2; k++)
+    if ((*grid)->row_types[k] != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&(*grid)->row_types[k]));
   PetscCall(PetscFree(*grid));
   PetscFunctionReturn(0);
 }

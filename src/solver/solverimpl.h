@@ -292,6 +292,7 @@ static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
 }
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt removed, PetscInt *);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverGapFromDisplacement_Private(AdhSolver, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);
 PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverClearContact_Private(AdhSolver);

@@ -25,17 +25,10 @@ PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
   const AdhGrid g = s->grid;
   const PetscInt D = s->apart_D = s->cascade_apart, Nx = g->Nx, Ny = g->Ny;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscInt      ys, ym, *ly, *start, nghost = 0, e, q, i;
-  PetscMPIInt   size;
-  PetscSFNode  *remote;
+  PetscInt      ys, ym, nghost = 0, e, q;
 
   PetscFunctionBegin;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
-  PetscCallMPI(MPI_Comm_size(s->comm, &size));
-  PetscCall(AdhGridGetRowsPerRank(g, &ly));
-  PetscCall(PetscMalloc1(size + 1, &start));
-  start[0] = 0;
-  for (PetscMPIInt r = 0; r < size; r++) start[r + 1] = start[r] + ly[r];
   /* each row of the band ys - D .. ys + ym + D - 1: own row l (l), ghost row q (ym + q), or off
      the grid (-1); a wrapped row met twice (a cell of few rows) is fetched once */
   PetscCall(PetscMalloc2(ym + 2 * D, &s->apart_source, 2 * D + 1, &s->apart_rows));
@@ -50,22 +43,9 @@ PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
       s->apart_source[e] = ym + q;
     }
   }
-  PetscCall(PetscMalloc1(nghost * Nx, &remote));
-  for (q = 0; q < nghost; q++) {
-    PetscMPIInt owner = 0;
-    while (start[owner + 1] <= s->apart_rows[q]) owner++;
-    for (i = 0; i < Nx; i++) {
-      remote[q * Nx + i].rank  = owner;
-      remote[q * Nx + i].index = (s->apart_rows[q] - start[owner]) * Nx + i;
-    }
-  }
-  PetscCall(PetscSFCreate(s->comm, &s->apart_sf));
-  PetscCall(PetscSFSetGraph(s->apart_sf, ym * Nx, nghost * Nx, NULL, PETSC_OWN_POINTER, remote, PETSC_OWN_POINTER));
-  PetscCall(PetscSFSetUp(s->apart_sf));
+  PetscCall(AdhGridCreateRowSF(g, nghost, s->apart_rows, &s->apart_sf));
   PetscCall(PetscCalloc1(ym * Nx + 1, &s->gone));
   PetscCall(PetscMalloc4(nghost * Nx + 1, &s->apart_ghost, (ym + 2 * D) * Nx, &s->apart_band, Nx, &s->apart_count, ym + 2 * D, &s->apart_any));
-  PetscCall(PetscFree(ly));
-  PetscCall(PetscFree(start));
   PetscFunctionReturn(0);
 }
 
@@ -112,11 +92,13 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
   PetscInt        ys, ym, e, i, j, active = 0;
   char           *band = s->apart_band, *any = s->apart_any;
   PetscInt       *count = s->apart_count;
+  MPI_Datatype    row;
 
   PetscFunctionBegin;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
-  PetscCall(PetscSFBcastBegin(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
-  PetscCall(PetscSFBcastEnd(s->apart_sf, MPI_CHAR, s->gone, s->apart_ghost, MPI_REPLACE));
+  PetscCall(AdhGridGetRowType(g, MPI_CHAR, &row));
+  PetscCall(PetscSFBcastBegin(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
   /* along x: each row of the band, a running count of the marks within D (most rows have none) */
   for (e = 0; e < ym + 2 * D; e++) {
     const PetscInt src = s->apart_source[e];

@@ -9,8 +9,8 @@
    (10): 100 B bounds them. A free
    boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
    bounding-box windows' transforms (up to 40): 200 B. crack-closure adds G (8), a copy of the
-   contact flags (1), u = K p (8) where the profile may have points without a face (a punch, a
-   file or an array; the openings are read from g elsewhere) and the front's links over the rows
+   contact flags (1), u = K p (8) where the profile has points without a face (a punch; the
+   openings are read from g elsewhere) and the front's links over the rows
    each rank looks at (one PetscInt), and per rank the rows other ranks own among those (three
    buffers of the openings, h and G, the flags and the links): at most 2 max(3, ceil(R)) rows of
    Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted all the
@@ -29,7 +29,7 @@ static const PetscLogDouble AdhRankBaseBytes = 50e6;
 static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
   const AdhIndenterType t = s->indenter.type;
-  const PetscBool       faceless = (PetscBool)(t == ADH_INDENTER_PUNCH || t == ADH_INDENTER_FILE || t == ADH_INDENTER_ARRAY);
+  const PetscBool       faceless = (PetscBool)(t == ADH_INDENTER_PUNCH); /* a file's or an array's profile is finite */
   PetscBool             cc, griffith;
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));

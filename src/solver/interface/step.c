@@ -469,13 +469,36 @@ PetscErrorCode AdhSolverClearContact_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* g = h - d + u, u = K p, for the current state (u itself is not kept: see GetDisplacement). */
+/* g = (h - d) + u, u = K p, for the current state (u itself is not kept: see GetDisplacement). */
 PetscErrorCode AdhSolverComputeGap_Private(AdhSolver s)
 {
   PetscFunctionBegin;
   PetscCall(MatMult(s->K, s->p, s->g));
-  PetscCall(VecAXPY(s->g, 1.0, s->h));
-  PetscCall(VecShift(s->g, -s->d));
+  PetscCall(AdhSolverGapFromDisplacement_Private(s, s->g));
+  PetscFunctionReturn(0);
+}
+
+/* g = (h - d) + u from the displacement u (which may be g itself): the one sum every gap and
+   opening is taken with, so that they agree to the last bit whichever computed them. */
+PetscErrorCode AdhSolverGapFromDisplacement_Private(AdhSolver s, Vec u)
+{
+  const PetscScalar *ha, *ua;
+  PetscScalar       *ga;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(s->h, &ha));
+  if (u == s->g) {
+    PetscCall(VecGetArray(s->g, &ga));
+    for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = (ha[k] - s->d) + ga[k];
+    PetscCall(VecRestoreArray(s->g, &ga));
+  } else {
+    PetscCall(VecGetArrayRead(u, &ua));
+    PetscCall(VecGetArrayWrite(s->g, &ga));
+    for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = (ha[k] - s->d) + ua[k];
+    PetscCall(VecRestoreArrayWrite(s->g, &ga));
+    PetscCall(VecRestoreArrayRead(u, &ua));
+  }
+  PetscCall(VecRestoreArrayRead(s->h, &ha));
   PetscFunctionReturn(0);
 }
 

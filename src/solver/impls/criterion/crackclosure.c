@@ -62,11 +62,11 @@ typedef struct {
   PetscInt    gys, gym;
   /* Of those rows, the ones another rank owns are fetched into a buffer of their own; the rank's
      own rows (every row on one rank) are read where they are: the buffers hold at most 2 width
-     rows, not copies of the grid vectors (24 B a point less, 32 under griffith). rowmap[r] of row
+     rows, not copies of the grid vectors. rowmap[r] of row
      gys + r: its local row in the grid vector (>= 0), or -1 - its row in the buffer. */
   PetscInt   *rowmap, nghost, nx;
-  PetscSF     fetch;        /* a rank's rows (roots) -> the other ranks' rows among them (leaves) */
-  MPI_Datatype row_scalars, row_flags; /* a row of a grid vector, of s->in_set */
+  PetscSF     fetch;        /* the other ranks' rows among them (AdhGridCreateRowSF) */
+  MPI_Datatype row_scalars, row_flags; /* its units: a row of a grid vector, of s->in_set (the grid's) */
   /* An opening is the gap g of an open point, which the detach test computes for every point
      (g = h - d + u, u = K p), so its rows are read from g. Where the indenter has no face (h =
      PETSC_INFINITY, outside a punch) the opening is measured from the face extended flat, which
@@ -104,9 +104,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   CrackClosure   *cc = (CrackClosure *)s->crdata;
   const AdhGrid   g  = s->grid;
   const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
-  PetscInt        ys, ym, side, *rowstart;
-  PetscSFNode    *owner;
-  PetscMPIInt     size, rank;
+  PetscInt        ys, ym, side, *rows;
 
   PetscFunctionBegin;
   if (cc->fetch) PetscFunctionReturn(0);
@@ -129,13 +127,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
     cc->gys = PetscMax(0, ys - cc->width);
     cc->gym = PetscMin(g->Ny, ys + ym + cc->width) - cc->gys;
   }
-  /* the first row of every rank, to find the owner of each row fetched */
-  PetscCallMPI(MPI_Comm_size(s->comm, &size));
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(PetscMalloc1(size + 1, &rowstart));
-  PetscCallMPI(MPI_Allgather(&ys, 1, MPIU_INT, rowstart, 1, MPIU_INT, s->comm));
-  rowstart[size] = g->Ny;
-  PetscCall(PetscMalloc1(cc->gym, &owner));
+  PetscCall(PetscMalloc1(cc->gym, &rows));
   PetscCall(PetscMalloc1(cc->gym, &cc->rowmap));
   cc->nx     = g->Nx;
   cc->nghost = 0;
@@ -143,21 +135,14 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
     const PetscInt b = ((cc->gys + r) % g->Ny + g->Ny) % g->Ny;
     if (b >= ys && b < ys + ym) cc->rowmap[r] = b - ys;
     else {
-      PetscMPIInt o = 0;
-      while (rowstart[o + 1] <= b) o++;
-      owner[cc->nghost].rank  = o;
-      owner[cc->nghost].index = b - rowstart[o];
-      cc->rowmap[r]           = -1 - cc->nghost++;
+      rows[cc->nghost] = b;
+      cc->rowmap[r]    = -1 - cc->nghost++;
     }
   }
-  PetscCall(PetscFree(rowstart));
-  PetscCall(PetscSFCreate(s->comm, &cc->fetch));
-  PetscCall(PetscSFSetGraph(cc->fetch, ym, cc->nghost, NULL, PETSC_COPY_VALUES, owner, PETSC_OWN_POINTER));
-  PetscCall(PetscSFSetUp(cc->fetch));
-  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)g->Nx, MPIU_SCALAR, &cc->row_scalars));
-  PetscCallMPI(MPI_Type_commit(&cc->row_scalars));
-  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)g->Nx, MPI_CHAR, &cc->row_flags));
-  PetscCallMPI(MPI_Type_commit(&cc->row_flags));
+  PetscCall(AdhGridCreateRowSF(g, cc->nghost, rows, &cc->fetch));
+  PetscCall(PetscFree(rows));
+  PetscCall(AdhGridGetRowType(g, MPIU_SCALAR, &cc->row_scalars));
+  PetscCall(AdhGridGetRowType(g, MPI_CHAR, &cc->row_flags));
   PetscCall(AdhGridCreateVector(g, &cc->G));
   PetscCall(PetscMalloc5(cc->nghost * g->Nx + 1, &cc->O.far, cc->nghost * g->Nx + 1, &cc->H.far, cc->nghost * g->Nx + 1, &cc->Gf.far, cc->nghost * g->Nx + 1, &cc->far_set, s->nlocal + 1, &cc->set_before));
   PetscCall(PetscMalloc5(cc->gym, &cc->O.store, cc->gym, &cc->H.store, cc->gym, &cc->Gf.store, cc->gym, &cc->P.store, cc->gym, &cc->set_store));
@@ -242,15 +227,15 @@ static PetscErrorCode RestoreRows(FetchedRows *f, const PetscScalar ***rows)
   PetscFunctionReturn(0);
 }
 
-/* The opening of open point n for a front point of profile hi at indentation d, from n's row
-   value on (its gap g_n = (h_n - d) + u_n): where the indenter has no face (h_n infinite) on is
-   u_n and the opening is measured from the front point's face extended flat. */
+/* The opening of open point n for a front point of profile hi at indentation d. on is n's gap
+   g_n = (h_n - d) + u_n, or u_n where n has no face (h_n infinite): there the opening is
+   measured from the front point's face extended flat. */
 static inline PetscReal Opening(PetscReal hn, PetscReal hi, PetscReal d, PetscReal on)
 {
   return hn >= PETSC_INFINITY ? (hi - d) + on : on;
 }
 
-/* NaN marks points without a value (the set's openings, G off the front); PETSc 3.18's
+/* NaN marks points without a value (G off the front); PETSc 3.18's
    PetscIsNanReal is a function call, and the walks below test millions of points. */
 static inline PetscBool IsNaN(PetscReal x)
 {
@@ -531,7 +516,9 @@ static PetscErrorCode WindowMean(AdhSolver s, CrackClosure *cc, PetscBool wrap, 
 }
 
 /* -adh_attach griffith: the gap below which each open point joins, the mirror of the detach test,
-   for the p whose u the detach test just fetched (it let nothing go). When an open point j beside
+   for the p whose gap the detach test just computed (it let nothing go or, under
+   -adh_cascade_apart, the points it let go keep their pressure and count as in the set here, as in
+   the state solved, while they get no limit of their own). When an open point j beside
    the contact joins, the edge moves out by one element: j takes the tension of its set neighbour
    i closest to the edge's inward normal, and the crack it closes had the opening g_j, so
    G_j = -p_i g_j / 2 is the release rate of the edge one element further out. Averaged along the
@@ -664,24 +651,25 @@ static PetscErrorCode Rules(AdhSolver s, PetscBool detach, PetscReal perr, Petsc
     PetscCall(FetchRows(cc, s->h, &cc->H));
     PetscCall(EnsureFaceless(s, cc));
     cc->h_version = s->profile_version;
+    cc->decided   = PETSC_FALSE; /* the openings below are of this profile */
   }
   /* u = K p and g = (h - d) + u, the openings' rows, and the set's. After a certified stop p is
      the iterate the stop was decided on, whose g is at hand. */
   if (!(cc->decided && s->certified_stop && !decision)) {
-    const PetscScalar *ha;
-    PetscScalar       *ga, *fa = NULL;
-    PetscCall(MatMult(s->K, s->p, s->g));
-    PetscCall(VecGetArrayRead(s->h, &ha));
-    PetscCall(VecGetArray(s->g, &ga));
-    if (cc->faceless) PetscCall(VecGetArrayWrite(cc->faceless, &fa));
-    for (k = 0; k < s->nlocal; k++) {
-      const PetscScalar u = ga[k];
-      ga[k] = (ha[k] - s->d) + u;
-      if (fa) fa[k] = PetscRealPart(ha[k]) >= PETSC_INFINITY ? u : ga[k];
-    }
-    if (fa) PetscCall(VecRestoreArrayWrite(cc->faceless, &fa));
-    PetscCall(VecRestoreArray(s->g, &ga));
-    PetscCall(VecRestoreArrayRead(s->h, &ha));
+    if (cc->faceless) { /* u into faceless, g from it, then g over u where there is a face */
+      const PetscScalar *ha, *ga;
+      PetscScalar       *fa;
+      PetscCall(MatMult(s->K, s->p, cc->faceless));
+      PetscCall(AdhSolverGapFromDisplacement_Private(s, cc->faceless));
+      PetscCall(VecGetArrayRead(s->h, &ha));
+      PetscCall(VecGetArrayRead(s->g, &ga));
+      PetscCall(VecGetArray(cc->faceless, &fa));
+      for (k = 0; k < s->nlocal; k++)
+        if (PetscRealPart(ha[k]) < PETSC_INFINITY) fa[k] = ga[k];
+      PetscCall(VecRestoreArray(cc->faceless, &fa));
+      PetscCall(VecRestoreArrayRead(s->g, &ga));
+      PetscCall(VecRestoreArrayRead(s->h, &ha));
+    } else PetscCall(AdhSolverComputeGap_Private(s));
     PetscCall(FetchRows(cc, cc->faceless ? cc->faceless : s->g, &cc->O));
     PetscCall(FetchSetRows(s, cc));
   }
@@ -871,8 +859,6 @@ static PetscErrorCode Destroy_CrackClosure(AdhSolver s)
   PetscCall(VecDestroy(&cc->G));
   PetscCall(PetscFree(cc->rowmap));
   PetscCall(PetscSFDestroy(&cc->fetch));
-  if (cc->row_scalars != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&cc->row_scalars));
-  if (cc->row_flags != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&cc->row_flags));
   PetscCall(PetscFree5(cc->O.far, cc->H.far, cc->Gf.far, cc->far_set, cc->set_before));
   PetscCall(PetscFree(cc->P.far));
   PetscCall(PetscFree5(cc->O.store, cc->H.store, cc->Gf.store, cc->P.store, cc->set_store));
@@ -894,8 +880,6 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cc));
-  cc->row_scalars      = MPI_DATATYPE_NULL;
-  cc->row_flags        = MPI_DATATYPE_NULL;
   s->crdata            = cc;
   s->crops.setup       = SetUp_CrackClosure;
   s->crops.evaluate    = Evaluate_CrackClosure;

@@ -482,22 +482,15 @@ PetscErrorCode AdhSolverComputeGap_Private(AdhSolver s)
    opening is taken with, so that they agree to the last bit whichever computed them. */
 PetscErrorCode AdhSolverGapFromDisplacement_Private(AdhSolver s, Vec u)
 {
-  const PetscScalar *ha, *ua;
+  const PetscScalar *ha;
   PetscScalar       *ga;
 
   PetscFunctionBegin;
+  if (u != s->g) PetscCall(VecCopy(u, s->g));
   PetscCall(VecGetArrayRead(s->h, &ha));
-  if (u == s->g) {
-    PetscCall(VecGetArray(s->g, &ga));
-    for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = (ha[k] - s->d) + ga[k];
-    PetscCall(VecRestoreArray(s->g, &ga));
-  } else {
-    PetscCall(VecGetArrayRead(u, &ua));
-    PetscCall(VecGetArrayWrite(s->g, &ga));
-    for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = (ha[k] - s->d) + ua[k];
-    PetscCall(VecRestoreArrayWrite(s->g, &ga));
-    PetscCall(VecRestoreArrayRead(u, &ua));
-  }
+  PetscCall(VecGetArray(s->g, &ga));
+  for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = (ha[k] - s->d) + ga[k];
+  PetscCall(VecRestoreArray(s->g, &ga));
   PetscCall(VecRestoreArrayRead(s->h, &ha));
   PetscFunctionReturn(0);
 }

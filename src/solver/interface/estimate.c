@@ -2,13 +2,15 @@
    estimate of the memory, so that a grid that cannot fit stops with one clear message instead of
    an allocation failure deep inside FFTW or PETSc (or the kernel's OOM killer).
 
-   The memory model is per grid point, measured with -memory_view (1024^2 and 2048^2): a periodic
-   cell holds h, p, g (24 B), the FFT array (8), the half-spectrum multipliers (4), the contact
-   flags (2), FFTW-MPI's transpose buffers on more than one rank (about 16), the CG vectors on the
-   contact set (up to 50 where everything touches) and, for a moment, a rough surface's generator
-   (10): 100 B bounds them. A free
-   boundary adds the zero-padded 2Nx x 2Ny transform (32), its redistribution (28) and the
-   bounding-box windows' transforms (up to 40): 200 B. crack-closure adds G (8), a copy of the
+   The memory model is per grid point, measured with -memory_view and -malloc_view (1024^2 and
+   2048^2, and 4096^2 on two ranks): a periodic cell holds h, p, g (24 B), the FFT array (8), the
+   half-spectrum multipliers (4), the contact flags (2), FFTW-MPI's transpose buffers on more than
+   one rank (about 16), the heap PETSc does not count (about 11: the C library's between set
+   updates of different sizes), the contact set's vectors, offsets and index set (58 B a point of
+   the set, so up to 58 where everything touches) and, for a moment, a rough surface's generator
+   (10, at set-up, before any set): 130 B bounds them. A free boundary adds the zero-padded
+   2Nx x 2Ny transform (32), its redistribution (28) and the bounding-box windows' transforms (up
+   to 40): 210 B. crack-closure adds G (8), a copy of the
    contact flags (1), u = K p (8) where the profile has points without a face (a punch; the
    openings are read from g elsewhere) and the front's links over the rows
    each rank looks at (one PetscInt), and per rank the rows other ranks own among those (three
@@ -34,7 +36,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 100.0 : 200.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
 }
 

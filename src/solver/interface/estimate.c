@@ -8,9 +8,10 @@
    one rank (about 16), the heap PETSc does not count (about 11: the C library's between set
    updates of different sizes), the contact set's vectors, offsets and index set (58 B a point of
    the set, so up to 58 where everything touches) and, for a moment, a rough surface's generator
-   (10, at set-up, before any set): 130 B bounds them. A free boundary adds the zero-padded
-   2Nx x 2Ny transform (32), its redistribution (28) and the bounding-box windows' transforms (up
-   to 40): 210 B. crack-closure adds G (8), a copy of the
+   (10, at set-up, before any set): 130 B bounds them. A free boundary holds instead of the FFT
+   array the zero-padded 2Nx x 2Ny transform (32), with its redistribution (28) and the
+   bounding-box windows' transforms (up to 40): measured 121-124 B above the base with little in
+   contact, plus the set's 58 where everything touches: 210 B. crack-closure adds G (8), a copy of the
    contact flags (1), u = K p (8) where the profile has points without a face (a punch; the
    openings are read from g elsewhere) and the front's links over the rows
    each rank looks at (one PetscInt), and per rank the rows other ranks own among those (three

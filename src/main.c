@@ -6,7 +6,7 @@
 #include "adhbem.h"
 
 static const char help[] = "adhbem: adhesive normal contact of elastic solids with the boundary element method\n"
-                           "(Pohrt & Popov 2015 mesh-dependent detachment criterion), on PETSc.\n"
+                           "(crack-closure detachment by default; Pohrt & Popov 2015's criterion with -adh_criterion pohrt-popov), on PETSc.\n"
                            "Runs the indentation path -adh_path with -adh_steps steps per leg and writes -adh_output.\n\n";
 
 /* An error prints its message once, on the first rank that sees it, as one line (with the

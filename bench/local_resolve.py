@@ -5,25 +5,28 @@ per ring of elements a receding edge crosses, so a step's solves grow with the g
 measured here: after the points of a set update let go, correct the pressures only on the set's
 points within W grid spacings of them (the rest of the set frozen), let go what that correction
 shows, and repeat; solve the whole set again only when this local cascade stops, and go on from
-there until a global solve lets nothing go. Every recorded state therefore ends on a global
-solve, as in the exact cascade; only the order in which the points let go may differ.
+there until a global solve lets nothing go. It still takes one solve per ring, but a local one;
+every recorded state ends on a global solve and its attach test, as in the exact cascade. A point
+let go on a local solve's pressures does not come back, so the states themselves may differ.
 
 What the prototype has, for both routes: a periodic cell of side 1 on N x N elements (E* = 1,
 the half-space's compliance with the element's shape, a finite k = 0 mode), a self-affine
 surface (Hurst 0.8, roll-off at the cell, cut-off at mode --modes, rms slope 0.1) whose Fourier
-coefficients are drawn per mode, so every N carries the same continuous surface; the paper's
-pointwise criterion (p < -Sigma lets go, Sigma = sqrt(E* dgamma / h)); the attach rule "reach"
-without the element's own reach (a point joins where its gap is negative); displacement control,
-12 steps to the depth at which about 40% of the cell touches, 24 back to the same height above.
-Unpreconditioned CG throughout, each iteration one whole-grid FFT pair.
+coefficients are drawn per mode, so every N carries the same continuous surface; a pointwise
+criterion (p < -Sigma lets go, Sigma = sqrt(E* dgamma / h): the paper's form without its
+constant factor); the attach rule of adhbem's `penetration` (a point joins where its gap is
+negative); displacement control, 12 steps to the depth at which about 40% of the cell touches,
+24 back to the same height above. CG preconditioned with the inverse of the whole grid's
+compliance, as adhbem's solves are: an iteration is two FFT pairs.
 
-It prints, for the exact cascade and for each W: global solves and their CG iterations; local
-solves, their iterations and what those would cost as FFTs on each cluster's own zero-padded box
-(an estimate in whole-grid FFT pairs, with SciPy); and the states against the exact cascade's: the largest
-tension, the loop energy, the force along the path, the contact sets.
+It prints, for the exact cascade and for each W: the global solves, their CG iterations and
+all FFT pairs outside the local solves; the local solves, their iterations, and their FFT pairs
+masked on the whole grid or (an estimate, with SciPy) on each cluster's own zero-padded box,
+which neglects the coupling between clusters that the masked solve keeps; and the states against
+the exact cascade's: the largest tension, the loop energy, the force along the path, the sets.
 
   ./run bench local_resolve --n 128 --w 8
-  ./run bench local_resolve --n 256 --w 8 --local-rtol 1e-2
+  ./run bench local_resolve --n 256 --w 4,8,16 --save curves.npz
 """
 import argparse
 import time
@@ -79,20 +82,40 @@ h = z.max() - z  # the gap at d = 0: the highest summit touches
 Sigma = np.sqrt(args.dgamma * N)
 
 
-def cg(mask, p0, rhs, rtol, sym=symbol):
-    """Solve K_mm p = rhs_m on the mask from p0 (zero off the mask); returns p and the iterations."""
+class Counts:
+    """Whole-grid FFT pairs (one a compliance or preconditioner application) by where they go."""
+    def __init__(self):
+        self.solves = self.its = self.pairs = 0  # global solves, their CG iterations, all pairs outside local solves
+        self.local_solves = self.local_its = self.local_points = 0
+        self.local_pairs_box = 0.0  # the local solves' iterations, as pairs on each cluster's box
+
+
+def apply_counted(sym, p, c):
+    c.pairs += 1
+    return apply(sym, p)
+
+
+def cg(mask, p0, rhs, rtol, c, sym=symbol):
+    """Solve K_mm p = rhs_m on the mask from p0 (zero off the mask) by CG preconditioned with the
+    inverse of the whole grid's compliance (as adhbem's solves are); returns p and the iterations.
+    Each iteration is two FFT pairs, counted in c.pairs unless c is None (a local solve)."""
+    app = (lambda v, q: apply(v, q)) if c is None else (lambda v, q: apply_counted(v, q, c))
     p = np.where(mask, p0, 0.0)
-    r = np.where(mask, rhs - apply(sym, p), 0.0)
+    r = np.where(mask, rhs - app(sym, p), 0.0)
     bnorm = np.linalg.norm(np.where(mask, rhs, 0.0)) or 1.0
-    q, rr, its = r.copy(), (r * r).sum(), 0
-    while np.sqrt(rr) > rtol * bnorm and its < 10000:
-        Aq = np.where(mask, apply(sym, q), 0.0)
-        a = rr / (q * Aq).sum()
+    zr = np.where(mask, app(1.0 / symbol, r), 0.0)
+    q, rz, its = zr.copy(), (r * zr).sum(), 0
+    while np.linalg.norm(r) > rtol * bnorm and its < 10000:
+        Aq = np.where(mask, app(sym, q), 0.0)
+        qAq = (q * Aq).sum()
+        assert qAq > 0, "the local operator is not positive definite (--truncate too small)"
+        a = rz / qAq
         p += a * q
         r -= a * Aq
-        rn = (r * r).sum()
-        q = r + rn / rr * q
-        rr, its = rn, its + 1
+        zr = np.where(mask, app(1.0 / symbol, r), 0.0)
+        rzn = (r * zr).sum()
+        q = zr + rzn / rz * q
+        rz, its = rzn, its + 1
     return p, its
 
 
@@ -118,20 +141,15 @@ def box_cost(win):
     for sl in ndimage.find_objects(lab):
         a = 4.0 * (sl[0].stop - sl[0].start) * (sl[1].stop - sl[1].start)
         c += a * np.log2(max(a, 2.0))
-    return min(c / (N * N * np.log2(N * N)), 4.0)
-
-
-class Counts:
-    def __init__(self):
-        self.solves = self.its = self.local_solves = self.local_its = self.local_points = 0
-        self.local_pairs = 0.0
+    return min(c / (N * N * np.log2(N * N)), 1.0)  # never more than the whole grid, masked
 
 
 def step(d, C, p, w, c):
-    """One displacement step from the set C and pressures p; w = 0: the exact cascade."""
+    """One displacement step from the set C and pressures p; w = 0: the exact cascade. It returns
+    only after a global solve that lets nothing go and lets nothing join."""
     rhs = d - h
     while True:
-        p, its = cg(C, p, rhs, 1e-8)
+        p, its = cg(C, p, rhs, 1e-8, c)
         c.solves, c.its = c.solves + 1, c.its + its
         gone = C & (p < -Sigma)
         if gone.any():
@@ -141,17 +159,17 @@ def step(d, C, p, w, c):
                 win = C & widen(gone, w)
                 if not win.any():
                     break
-                r = rhs - apply(symbol, p)  # the residual the tension let go leaves
-                dp, its = cg(win, np.zeros_like(p), np.where(win, r, 0.0), args.local_rtol, symbol_local)
+                r = rhs - apply_counted(symbol, p, c)  # the residual the tension let go leaves
+                dp, its = cg(win, np.zeros_like(p), np.where(win, r, 0.0), args.local_rtol, None, symbol_local)
                 c.local_solves, c.local_its = c.local_solves + 1, c.local_its + its
                 c.local_points += win.sum()
-                c.local_pairs += its * box_cost(win)
+                c.local_pairs_box += 2 * its * box_cost(win)
                 p = p + dp
                 gone = win & (p < -Sigma)
                 C = C & ~gone
                 p = np.where(C, p, 0.0)
             continue
-        joins = ~C & (h - d + apply(symbol, p) < 0)
+        joins = ~C & (h - d + apply_counted(symbol, p, c) < 0)
         if not joins.any():
             return C, p
         C = C | joins
@@ -165,7 +183,7 @@ def run(w):
     C, p, c, states = np.zeros((N, N), bool), np.zeros((N, N)), Counts(), []
     for d in path:
         C, p = step(d, C, p, w, c)
-        states.append((d, -p.sum() / N**2, C.copy()))  # the mean tension (tensile positive)
+        states.append((d, -p.sum() / N**2, C.copy(), p.copy()))  # the mean tension (tensile positive)
         if d < 0 and not C.any():
             break
     d = np.array([s[0] for s in states])
@@ -173,29 +191,41 @@ def run(w):
     return states, F, -np.trapz(F, d), c
 
 
+def padded(states, n):
+    """The states to n, past pull-off with no force and nothing in contact."""
+    empty = np.zeros((N, N), bool)
+    return [s[:3] for s in states] + [(None, 0.0, empty)] * (n - len(states))
+
+
 t = time.process_time()
 ref, F0, E0, c0 = run(0)
-curvature = np.fft.irfft2(-(2 * np.pi)**2 * (MX**2 + MY**2) * np.fft.rfft2(z), s=(N, N))
-kappa = np.sqrt((curvature**2).mean()) / 2  # the rms mean curvature, for the asperities' JKR radius
-print(f"N = {N}, dgamma {args.dgamma}, Sigma {Sigma:.4g}; the smallest asperities' JKR radius at "
-      f"pull-off about {(9 * np.pi * args.dgamma / (8 * kappa**2))**(1 / 3) * N:.0f} spacings")
-print(f"| route | global solves | their CG its | local solves | local CG its | local as box FFT pairs "
-      f"| mean window | largest tension | loop energy | force along the path, RMS / max | sets differ by | CPU s |")
-print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-print(f"| exact cascade | {c0.solves} | {c0.its} | | | | | {F0.max():.6g} | {E0:.6g} | | | {time.process_time() - t:.0f} |")
-save = {"d": np.array([s[0] for s in ref]), "F_exact": F0, "counts_exact": [c0.solves, c0.its]}
+print(f"N = {N}, dgamma {args.dgamma}, Sigma {Sigma:.4g}")
+print(f"| route | global solves | their CG its | FFT pairs outside local solves | local solves | local CG its "
+      f"| local pairs, masked / on boxes | mean window | largest tension | loop energy "
+      f"| force along the path, RMS / max | sets differ by, at most | CPU s |")
+print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+print(f"| exact cascade | {c0.solves} | {c0.its} | {c0.pairs} | | | | | {F0.max():.6g} | {E0:.6g} | | | "
+      f"{time.process_time() - t:.0f} |")
+save = {"d": np.array([s[0] for s in ref]), "F_exact": F0, "counts_exact": [c0.solves, c0.its, c0.pairs]}
 for w in [int(x) for x in args.w.split(",")]:
     t = time.process_time()
     states, F, E, c = run(w)
-    n = min(len(F), len(F0))
+    n = max(len(states), len(ref))
+    a, b = padded(states, n), padded(ref, n)
+    Fa, Fb = np.array([s[1] for s in a]), np.array([s[1] for s in b])
     scale = np.abs(F0).max()
-    rms = np.sqrt(((F[:n] - F0[:n])**2).mean()) / scale
-    worst = np.abs(F[:n] - F0[:n]).max() / scale
-    differ = max(int((states[i][2] ^ ref[i][2]).sum()) for i in range(n))
-    print(f"| W = {w} | {c.solves} | {c.its} | {c.local_solves} | {c.local_its} | {c.local_pairs:.0f} "
-          f"| {c.local_points / max(c.local_solves, 1) / N**2:.2%} | {F.max():.6g} ({F.max() / F0.max() - 1:+.3%}) "
-          f"| {E:.6g} ({E / E0 - 1:+.3%}) | {rms:.3%} / {worst:.3%} | {differ} points | {time.process_time() - t:.0f} |")
+    rms = np.sqrt(((Fa - Fb)**2).mean()) / scale
+    worst = np.abs(Fa - Fb).max() / scale
+    differ = max(int((a[i][2] ^ b[i][2]).sum()) for i in range(n))
+    print(f"| W = {w} | {c.solves} | {c.its} | {c.pairs} | {c.local_solves} | {c.local_its} "
+          f"| {2 * c.local_its} / {c.local_pairs_box:.0f} | {c.local_points / max(c.local_solves, 1) / N**2:.2%} "
+          f"| {F.max():.6g} ({F.max() / F0.max() - 1:+.3%}) | {E:.6g} ({E / E0 - 1:+.3%}) | {rms:.3%} / {worst:.3%} "
+          f"| {differ} points | {time.process_time() - t:.0f} |")
     save[f"F_w{w}"] = F
-    save[f"counts_w{w}"] = [c.solves, c.its, c.local_solves, c.local_its, c.local_points, c.local_pairs]
+    save[f"counts_w{w}"] = [c.solves, c.its, c.pairs, c.local_solves, c.local_its, c.local_points, c.local_pairs_box]
+    save[f"sets_w{w}"] = np.array([s[2] for s in states])
+    save[f"p_w{w}"] = np.array([s[3] for s in states])
+save["sets_exact"] = np.array([s[2] for s in ref])
+save["h"], save["Sigma"] = h, Sigma
 if args.save:
     np.savez(args.save, **save)

@@ -51,11 +51,10 @@ args = ap.parse_args()
 N = args.n
 
 # the compliance of a periodic half-space in Fourier space, the element's shape through sinc^2
-m = np.fft.fftfreq(N, 1.0 / N)
-n = np.fft.rfftfreq(N, 1.0 / N)
-MX, MY = np.meshgrid(m, n, indexing="ij")
+MX, MY = np.meshgrid(np.fft.fftfreq(N, 1.0 / N), np.fft.rfftfreq(N, 1.0 / N), indexing="ij")
 k = 2 * np.pi * np.sqrt(MX**2 + MY**2)
 symbol = 2.0 / np.sqrt(k**2 + (2 * np.pi)**2) * np.sinc(MX / N)**2 * np.sinc(MY / N)**2
+preconditioner = 1.0 / symbol  # the whole grid's stiffness
 
 
 def apply(sym, p):
@@ -99,11 +98,11 @@ def cg(mask, p0, rhs, rtol, c, sym=symbol):
     """Solve K_mm p = rhs_m on the mask from p0 (zero off the mask) by CG preconditioned with the
     inverse of the whole grid's compliance (as adhbem's solves are); returns p and the iterations.
     Each iteration is two FFT pairs, counted in c.pairs unless c is None (a local solve)."""
-    app = (lambda v, q: apply(v, q)) if c is None else (lambda v, q: apply_counted(v, q, c))
+    app = apply if c is None else (lambda v, q: apply_counted(v, q, c))
     p = np.where(mask, p0, 0.0)
     r = np.where(mask, rhs - app(sym, p), 0.0)
     bnorm = np.linalg.norm(np.where(mask, rhs, 0.0)) or 1.0
-    zr = np.where(mask, app(1.0 / symbol, r), 0.0)
+    zr = np.where(mask, app(preconditioner, r), 0.0)
     q, rz, its = zr.copy(), (r * zr).sum(), 0
     while np.linalg.norm(r) > rtol * bnorm and its < 10000:
         Aq = np.where(mask, app(sym, q), 0.0)
@@ -112,7 +111,7 @@ def cg(mask, p0, rhs, rtol, c, sym=symbol):
         a = rz / qAq
         p += a * q
         r -= a * Aq
-        zr = np.where(mask, app(1.0 / symbol, r), 0.0)
+        zr = np.where(mask, app(preconditioner, r), 0.0)
         rzn = (r * zr).sum()
         q = zr + rzn / rz * q
         rz, its = rzn, its + 1
@@ -227,5 +226,6 @@ for w in [int(x) for x in args.w.split(",")]:
     save[f"p_w{w}"] = np.array([s[3] for s in states])
 save["sets_exact"] = np.array([s[2] for s in ref])
 save["h"], save["Sigma"] = h, Sigma
+save["kernel"] = np.fft.irfft2(symbol, s=(N, N))  # the displacement of a unit pressure at (0, 0)
 if args.save:
     np.savez(args.save, **save)

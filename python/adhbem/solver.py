@@ -279,7 +279,7 @@ class Solver:
         import difflib
         known = [name[len("adh_"):] for name in _adhbem.option_names()]
         for key in options:
-            if key in known or key.startswith(("ksp_", "pc_")):
+            if key in known or key.startswith(("ksp_", "pc_", "local_ksp_")):
                 continue
             near = difflib.get_close_matches(key, known, n=1)
             hint = f" (did you mean {near[0]!r}?)" if near else ""

@@ -131,12 +131,21 @@ struct _n_AdhSolver {
   char     *in_set;
   char     *left;             /* points that let go during the current step (they stay off: AttachLimit) */
   PetscInt  cascade_apart;    /* -adh_cascade_apart D: points join in an update that lets others go, D spacings away from them (0: off) */
-  PetscInt  apart_D;          /* the D the marks were set up for */
+  PetscInt  apart_D;          /* the width the marks' band was set up for: the larger of the two cascades' */
   PetscBool apart_pending;    /* in such an update, from before the detach to the end of the attach test (cascadeapart.c) */
-  char     *gone;             /* with cascade_apart: the points let go in the current update, then those within D of them */
-  PetscSF   apart_sf;         /* with cascade_apart: the marks of the D rows beyond a rank's own (cascadeapart.c) */
+  char     *gone;             /* with cascade_apart or cascade_local: the points let go in the current update, then those within D or W of them */
+  PetscSF   apart_sf;         /* with either: the marks of the apart_D rows beyond a rank's own (cascadeapart.c) */
   PetscInt *apart_source, *apart_rows, *apart_count;
   char     *apart_ghost, *apart_band, *apart_any;
+  PetscInt  cascade_local;    /* -adh_cascade_local W: after a set update lets points go, re-solve the set within W spacings of them only (0: off; cascadelocal.c) */
+  PetscReal cascade_local_rtol; /* the relative residual those local solves stop at */
+  PetscBool local_pending;    /* a detach test whose points let go are marked for the next local solve */
+  KSP       local_ksp;        /* the local solves' KSP, on the window: the set's points within W of those let go */
+  Mat       Kww;              /* K restricted to the window */
+  Vec       pW, bW;           /* correction and right-hand side on the window */
+  PetscInt *win_local, nwin_local, nwin; /* local offsets of this rank's points in the window; its global size */
+  VecScatter win_scatter;     /* window values -> the operator's grid (not on the direct path) */
+  PetscInt  step_local_solves, step_local_its; /* this step's local solves and their KSP iterations */
   PetscInt  step_largest;     /* the largest set of the current step (points) */
   PetscInt  nlocal;
   AdhAttach attach;
@@ -258,16 +267,20 @@ static inline void AdhSolverRemovePoint_Private(AdhSolver s, PetscInt k, PetscSc
 {
   s->in_set[k] = 0;
   s->left[k]   = 1;
-  if (s->apart_pending) s->gone[k] = 1;
-  else pa[k] = 0.0;
+  if (s->apart_pending || s->local_pending) s->gone[k] = 1;
+  if (!s->apart_pending) pa[k] = 0.0;
   if (xa) xa[k] = 0.0;
 }
 PETSC_INTERN PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver, PetscReal *);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverBeginCascadeApart_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver, PetscInt w);
 PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver, Mat, PetscInt n, const PetscInt local[], VecScatter, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
 /* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;

@@ -1,6 +1,6 @@
 /* adhbem's own options: their names, and the check that every -adh_ option given is one of them,
    so that a misspelled option (-adh_gama 0.01) stops the run, naming the nearest option, instead
-   of running with the default. The options of the solver's KSP and PC (-adh_ksp_*, -adh_pc_*)
+   of running with the default. The options of the solver's KSPs and PC (-adh_ksp_*, -adh_pc_*, -adh_local_ksp_*)
    are PETSc's, which reads some only during solves: they are not checked. tests/sys/test_options.py
    keeps this list equal to what -help shows. */
 #include "sys/sysimpl.h"
@@ -10,7 +10,7 @@ static const char *const AdhOptionNames[] = {
   "adh_gamma_field_dataset", "adh_critical_stress", "adh_boundary", "adh_indenter", "adh_radius", "adh_punch_radius",
   "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
   "adh_rms_height", "adh_rms_slope", "adh_rolloff_wavelength", "adh_cutoff_wavelength", "adh_seed", "adh_control",
-  "adh_criterion", "adh_criterion_radius", "adh_criterion_radius_max", "adh_criterion_certify", "adh_path", "adh_steps", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart",
+  "adh_criterion", "adh_criterion_radius", "adh_criterion_radius_max", "adh_criterion_certify", "adh_path", "adh_steps", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart", "adh_cascade_local", "adh_cascade_local_rtol",
   "adh_memory_check", "adh_box", "adh_max_outer", "adh_pulloff_rtol", "adh_predictor", "adh_predictor_rtol", "adh_predictor_max_it", "adh_predictor_fourier", "adh_monitor", "adh_monitor_interval",
   "adh_fields", "adh_fields_stride", "adh_output", "adh_fftw_planner", "adh_fftw_timelimit", "adh_fftw_layout", "adh_view", "adh_traceback", "adh_checkpoint", "adh_checkpoint_every", "adh_restart",
 };
@@ -63,7 +63,7 @@ PetscErrorCode AdhCheckOptions_Private(MPI_Comm comm, const char prefix_or_null[
     name += plen;
     PetscCall(PetscStrncmp(name, "adh_", 4, &ours));
     if (!ours) continue;
-    for (const char *const *p = (const char *const[]){"adh_ksp_", "adh_pc_", NULL}; *p && !theirs; p++) PetscCall(PetscStrncmp(name, *p, strlen(*p), &theirs));
+    for (const char *const *p = (const char *const[]){"adh_ksp_", "adh_pc_", "adh_local_ksp_", NULL}; *p && !theirs; p++) PetscCall(PetscStrncmp(name, *p, strlen(*p), &theirs));
     if (theirs) continue;
     for (o = 0; o < (PetscInt)PETSC_STATIC_ARRAY_LENGTH(AdhOptionNames) && !known; o++) {
       const PetscInt dist = EditDistance(name, AdhOptionNames[o]);

@@ -193,3 +193,96 @@ def test_apart_cascade_loading_branch_is_jkr():
     from test_validation import loading_branch
     coarse = loading_branch(25.0, 100, cascade_apart=16)
     assert np.all(np.abs(coarse) < 0.03) and abs(coarse.mean()) < 0.02
+
+
+# -adh_cascade_local W: after a set update lets points go, local solves within W grid spacings of
+# them, until one lets nothing go; then the whole set again (docs/performance.md).
+
+
+def test_local_cascade_with_a_window_over_the_whole_set_is_exact():
+    """With W beyond the cell and local solves to 1e-10 every local solve is a solve of the whole
+    set, so the states are the exact cascade's, state for state (the marks reach across the
+    periodic cell's edges), in fewer solves of the whole set; W = 4 takes fewer still."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    exact = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH).solve_path()
+    whole = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=64, cascade_local_rtol=1e-10, **ROUGH).solve_path()
+    local = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=4, **ROUGH).solve_path()
+    say(f"\nrough 48^2: set updates exact {int(exact['outer_iterations'].sum())}, local 64 {int(whole['outer_iterations'].sum())},"
+        f" local 4 {int(local['outer_iterations'].sum())}; FFT pairs {int(exact['fft_pairs'].sum())},"
+        f" {int(whole['fft_pairs'].sum())}, {int(local['fft_pairs'].sum())}")
+    np.testing.assert_array_equal(whole["contact_points"], exact["contact_points"])
+    np.testing.assert_allclose(whole["force"], exact["force"], rtol=0, atol=1e-9 * np.abs(exact["force"]).max())
+    assert whole["outer_iterations"].sum() < exact["outer_iterations"].sum()
+    assert local["outer_iterations"].sum() < exact["outer_iterations"].sum()
+    assert local["fft_pairs"].sum() < exact["fft_pairs"].sum()
+
+
+def test_local_cascade_states_are_equilibria():
+    """Every state recorded with W = 2 is one the exact cascade's rules accept: the pressure on the
+    set solves the dense K_CC p = d - h_C, nothing on the set is beyond the critical tension, and
+    no point off the set penetrates (pohrt-popov, penetration: the rules without averages)."""
+    from common import assembled
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    opts = dict(ROUGH, n=24, size=24.0, path=[0.0, 0.3, -0.3], criterion="pohrt-popov", attach="penetration", cascade_local=2)
+    s = adhbem.Solver(comm=PETSc.COMM_SELF, **opts)
+    K = None
+    detached = 0
+    for state in s.iterate_path():
+        if K is None:
+            K = assembled(s.compliance)
+            Sigma = s.critical_stress
+        p = s.pressure.getArray().copy()
+        h = s.profile.getArray().copy()
+        C = np.zeros(p.size, bool)
+        C[s.contact_set.getIndices()] = True
+        if not C.any():
+            continue
+        pC = np.linalg.solve(K[np.ix_(C, C)], state["d"] - h[C])
+        assert np.max(np.abs(p[C] - pC)) <= 1e-7 * np.max(np.abs(pC))
+        assert np.all(p[~C] == 0)
+        assert np.all(p[C] >= -Sigma * (1 + 1e-9))
+        assert np.all((h - state["d"] + K @ p)[~C] >= -1e-9 * np.abs(h).max())
+        detached += int(np.any(p[C] < -0.5 * Sigma))
+    assert detached > 0  # the path does carry tension near the limit
+    exact = adhbem.Solver(comm=PETSc.COMM_SELF, **dict(opts, cascade_local=0)).solve_path()
+    assert s.curve()["outer_iterations"].sum() < exact["outer_iterations"].sum()  # local solves did take updates
+
+
+def test_local_cascade_on_the_jkr_sphere():
+    """a_c/h = 25: the largest tension and the curve as close to JKR as the exact cascade's (within
+    1.25 times its error and 0.2% of F_adh)."""
+    exact = jkr_unloading(80, 25.0)
+    local = jkr_unloading(80, 25.0, cascade_local=8)
+    say(f"\nJKR sphere a_c/h 25, exact cascade: largest tension {exact[0]:.4f} F_adh, RMS {exact[1]:.4f}, KSP {exact[2]};"
+        f" -adh_cascade_local 8: {local[0]:.4f}, RMS {local[1]:.4f}, KSP {local[2]}")
+    assert abs(local[0] - 1) <= 1.25 * abs(exact[0] - 1) + 0.002
+    assert local[1] <= 1.25 * exact[1] + 0.002
+
+
+@pytest.mark.mpi
+@pytest.mark.ranks3
+@pytest.mark.parametrize("W", [4, 20])
+def test_local_cascade_on_any_number_of_ranks(W):
+    """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
+    W = 20 reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps."""
+    assert_same_on_any_ranks(dict(ROUGH, cascade_local=W))
+
+
+@pytest.mark.parametrize("args, message", [
+    (["-adh_cascade_local", "-1"], "-adh_cascade_local must lie in [0, 64]"),
+    (["-adh_cascade_local", "65"], "-adh_cascade_local must lie in [0, 64]"),
+    (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
+    (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
+    (["-adh_cascade_local", "8", "-adh_cascade_apart", "8"], "-adh_cascade_local and -adh_cascade_apart cannot be combined"),
+])
+def test_bad_cascade_local_is_refused(tmp_path, args, message):
+    import subprocess
+    from adhbem_build import EXE
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("serial")
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "1e-3", "-adh_path", "0.01,0", *args,
+                        "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
+    assert r.returncode != 0 and message in r.stderr + r.stdout
+    assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())

@@ -19,11 +19,12 @@
 #include "solver/solverimpl.h"
 
 /* The SF that brings each rank the marks of the D rows before and after its own (wrapped on a
-   periodic cell, none beyond a free grid's edge), and the source of each row of the widened band. */
+   periodic cell, none beyond a free grid's edge), and the source of each row of the widened band;
+   D the larger of -adh_cascade_apart's and -adh_cascade_local's widths, which share the marks. */
 PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
 {
   const AdhGrid g = s->grid;
-  const PetscInt D = s->apart_D = s->cascade_apart, Nx = g->Nx, Ny = g->Ny;
+  const PetscInt D = s->apart_D = PetscMax(s->cascade_apart, s->cascade_local), Nx = g->Nx, Ny = g->Ny;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt      ys, ym, nghost = 0, e, q;
 
@@ -83,11 +84,13 @@ PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* s->gone: the points let go in this update, widened by D; the attach test leaves them alone. */
-PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
+/* s->gone: the marked points, widened by w <= s->apart_D (in x and in y); rows of the band from
+   offset o = apart_D - w on, so that one band serves both widths (-adh_cascade_apart,
+   -adh_cascade_local). */
+PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s, PetscInt w)
 {
   const AdhGrid   g = s->grid;
-  const PetscInt  D = s->apart_D, Nx = g->Nx;
+  const PetscInt  o = s->apart_D - w, Nx = g->Nx;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt        ys, ym, e, i, j, active = 0;
   char           *band = s->apart_band, *any = s->apart_any;
@@ -95,12 +98,13 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
   MPI_Datatype    row;
 
   PetscFunctionBegin;
+  PetscCheck(w >= 0 && o >= 0, s->comm, PETSC_ERR_PLIB, "Marks widened by %" PetscInt_FMT " on a band of %" PetscInt_FMT " rows", w, s->apart_D);
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(AdhGridGetRowType(g, MPI_CHAR, &row));
   PetscCall(PetscSFBcastBegin(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
-  /* along x: each row of the band, a running count of the marks within D (most rows have none) */
-  for (e = 0; e < ym + 2 * D; e++) {
+  /* along x: each row of the band, a running count of the marks within w (most rows have none) */
+  for (e = o; e < o + ym + 2 * w; e++) {
     const PetscInt src = s->apart_source[e];
     const char    *row = src < 0 ? NULL : src < ym ? s->gone + src * Nx : s->apart_ghost + (src - ym) * Nx;
     char          *out = band + e * Nx;
@@ -111,17 +115,17 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
       continue;
     }
 #define AT(a) (wrap ? row[((a) % Nx + Nx) % Nx] : ((a) >= 0 && (a) < Nx ? row[a] : 0))
-    for (i = -D; i <= D; i++) c += AT(i);
+    for (i = -w; i <= w; i++) c += AT(i);
     for (i = 0; i < Nx; i++) {
       out[i] = (char)(c > 0);
-      c += AT(i + D + 1) - AT(i - D);
+      c += AT(i + w + 1) - AT(i - w);
     }
 #undef AT
   }
-  /* along y: for each own row j (band row j + D), the count over band rows j .. j + 2D; only rows
-     with marks change it */
+  /* along y: for each own row j (band row o + j + w), the count over band rows o + j .. o + j + 2w;
+     only rows with marks change it */
   PetscCall(PetscArrayzero(count, Nx));
-  for (e = 0; e <= 2 * D; e++) {
+  for (e = o; e <= o + 2 * w; e++) {
     if (!any[e]) continue;
     active++;
     for (i = 0; i < Nx; i++) count[i] += band[e * Nx + i];
@@ -130,13 +134,13 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s)
     if (active) for (i = 0; i < Nx; i++) s->gone[j * Nx + i] = (char)(count[i] > 0);
     else PetscCall(PetscArrayzero(s->gone + j * Nx, Nx));
     if (j + 1 == ym) break;
-    if (any[j + 2 * D + 1]) {
+    if (any[o + j + 2 * w + 1]) {
       active++;
-      for (i = 0; i < Nx; i++) count[i] += band[(j + 2 * D + 1) * Nx + i];
+      for (i = 0; i < Nx; i++) count[i] += band[(o + j + 2 * w + 1) * Nx + i];
     }
-    if (any[j]) {
+    if (any[o + j]) {
       active--;
-      for (i = 0; i < Nx; i++) count[i] -= band[j * Nx + i];
+      for (i = 0; i < Nx; i++) count[i] -= band[(o + j) * Nx + i];
     }
   }
   PetscFunctionReturn(0);

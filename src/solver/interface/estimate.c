@@ -19,8 +19,9 @@
    Nx points (R the largest radius, -adh_criterion_radius_max; none on one rank, counted all the
    same); -adh_attach griffith a fourth buffer, of p (its limits are kept over G);
    -adh_criterion_certify the slots of its front's cache (one PetscInt; its entries, about 1 kB a
-   front point, go with the front, not the grid, and are not counted); -adh_cascade_apart its
-   marks and their widened band (2 bytes); -adh_cascade_single the float transform array (4). Each rank also holds about
+   front point, go with the front, not the grid, and are not counted); -adh_cascade_apart or
+   -adh_cascade_local their marks and widened band (2 bytes; the local solves' vectors are on the
+   window, and stand in for those of the set's KSP, which is reset with the set before them); -adh_cascade_single the float transform array (4). Each rank also holds about
    50 MB of MPI, PETSc and FFTW. */
 #include <unistd.h>
 #include "solver/solverimpl.h"
@@ -37,7 +38,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || s->cascade_local > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
 }
 

@@ -103,6 +103,8 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsBool("-adh_cascade_single", "The solves that stop at -adh_cascade_rtol apply the compliance and the preconditioner in single precision (float transforms: half the bytes to move; periodic cells); the last solve of a step stays in double", "AdhSolver", s->cascade_single, &s->cascade_single, NULL));
   PetscCall(PetscOptionsInt("-adh_cascade_apart", "Points may join in a set update that lets others go, where they lie more than this many grid spacings from every point let go in it (0: joins only in an update that lets nothing go, the exact cascade)", "AdhSolver", s->cascade_apart, &s->cascade_apart, NULL));
   PetscCall(PetscOptionsReal("-adh_cascade_rtol", "Solves between set updates of a step stop at this relative residual, and the set is updated on their pressures (0: every solve to -adh_ksp_rtol); a set that stands on one is solved to -adh_ksp_rtol and tested again. Fewer KSP iterations; the sets along the way may differ from the exact cascade's", "AdhSolver", s->cascade_rtol, &s->cascade_rtol, NULL));
+  PetscCall(PetscOptionsInt("-adh_cascade_local", "After a set update lets points go, solve the set again only within this many grid spacings of them (the rest frozen), let go what that shows, and repeat; the whole set is solved again when a local solve lets nothing go (0: every solve on the whole set, the exact cascade)", "AdhSolver", s->cascade_local, &s->cascade_local, NULL));
+  PetscCall(PetscOptionsReal("-adh_cascade_local_rtol", "The relative residual at which the local solves of -adh_cascade_local stop", "AdhSolver", s->cascade_local_rtol, &s->cascade_local_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
@@ -117,6 +119,10 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->cascade_rtol >= 0 && s->cascade_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_rtol must lie in [0, 1), got %g", (double)s->cascade_rtol);
   PetscCheck(s->cascade_apart >= 0 && s->cascade_apart <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_apart must lie in [0, 64] grid spacings, got %" PetscInt_FMT, s->cascade_apart);
   PetscCheck(!(s->cascade_apart > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart: displacement control only (-adh_control displacement)");
+  PetscCheck(s->cascade_local >= 0 && s->cascade_local <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local must lie in [0, 64] grid spacings, got %" PetscInt_FMT, s->cascade_local);
+  PetscCheck(s->cascade_local_rtol > 0 && s->cascade_local_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local_rtol must lie in (0, 1), got %g", (double)s->cascade_local_rtol);
+  PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
+  PetscCheck(!(s->cascade_local > 0 && s->cascade_apart > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local and -adh_cascade_apart cannot be combined (both mark the points a set update lets go)");
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);

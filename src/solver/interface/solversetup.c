@@ -166,7 +166,8 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
     s->nlocal = nlocal;
-    if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+    if (s->cascade_apart > 0 || s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+    if (s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeLocal_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 
     PetscCall(KSPCreate(s->comm, &s->ksp));

@@ -4,24 +4,33 @@
    violators; one full multiply u = K p per attach test). */
 #include "solver/solverimpl.h"
 
-/* y = R A R^T x for an operator A on the grid in use (the window or the whole grid): spread the
-   set values onto it, apply A, gather them back. K_CC uses the compliance, the preconditioner
-   the stiffness; they share the scatter. Where the operators' transforms use the grid's own
-   rows (a periodic grid), the set values go straight into the transform: no grid vectors, no
-   scatter. */
-PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver s, Mat A, Vec x, Vec y)
+/* y = R A R^T x for an operator A on the grid in use (the window or the whole grid), R the
+   restriction to n local points (their offsets in the grid's rows: the set, or a local solve's
+   window, -adh_cascade_local): spread the values onto the grid, apply A, gather them back. K_CC
+   uses the compliance, the preconditioner the stiffness; they share the scatter. Where the
+   operators' transforms use the grid's own rows (a periodic grid), the values go straight into
+   the transform: no grid vectors, no scatter. */
+PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver s, Mat A, PetscInt n, const PetscInt local[], VecScatter scatter, Vec x, Vec y)
 {
   PetscFunctionBegin;
   if (s->direct_set) {
-    PetscCall(MatAdhComplianceMultOnSet(A, s->nset_local, s->set_local, x, y));
+    PetscCall(MatAdhComplianceMultOnSet(A, n, local, x, y));
     PetscFunctionReturn(0);
   }
   PetscCall(VecSet(s->op_in, 0.0));
-  PetscCall(VecScatterBegin(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(s->set_scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterBegin(scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(scatter, x, s->op_in, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(MatMult(A, s->op_in, s->op_out));
-  PetscCall(VecScatterBegin(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(s->set_scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterBegin(scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(scatter, s->op_out, y, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+/* y = R A R^T x on the contact set. */
+PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver s, Mat A, Vec x, Vec y)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhSolverApplyRestricted_Private(s, A, s->nset_local, s->set_local, s->set_scatter, x, y));
   PetscFunctionReturn(0);
 }
 

@@ -3,7 +3,9 @@
    criterion says, let join what the attach rule says, until the set stands. With
    -adh_cascade_rtol the solves after a set update stop at that relative residual, and the set is
    updated on their pressures; once a set stands on one, it is solved to the full tolerance and
-   tested again, so every recorded state is tested on an exact solve. */
+   tested again, so every recorded state is tested on an exact solve. With -adh_cascade_local the
+   points a set update lets go are followed by local solves around them (cascadelocal.c) before
+   the next solve of the whole set. */
 #include "solver/solverimpl.h"
 
 /* Displacement control: the equilibrium set at indentation d, from the current set. */
@@ -30,8 +32,14 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
     /* -adh_cascade_apart: the points let go are marked and keep their pressure for this update's
        attach test; not after a certified stop, whose iterate decides only the detachments */
-    if (s->gone && !s->certified_stop) PetscCall(AdhSolverBeginCascadeApart_Private(s));
+    if (s->cascade_apart && !s->certified_stop) PetscCall(AdhSolverBeginCascadeApart_Private(s));
+    /* -adh_cascade_local: the points let go are marked, for the local solves around them */
+    if (s->cascade_local) {
+      PetscCall(PetscArrayzero(s->gone, s->nlocal));
+      s->local_pending = PETSC_TRUE;
+    }
     PetscCall(AdhSolverDetach_Private(s, &removed));
+    s->local_pending = PETSC_FALSE;
     if (!removed) s->apart_pending = PETSC_FALSE; /* nothing marked */
     if (!removed && loose) { /* the set stands on a loose solve: solve to the full tolerance and test again */
       loose = PETSC_FALSE;
@@ -42,7 +50,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
     added = 0;
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, 0, &added));
     else if (s->apart_pending) { /* -adh_cascade_apart: join away from the points let go */
-      PetscCall(AdhSolverMarkNearGone_Private(s));
+      PetscCall(AdhSolverMarkNearGone_Private(s, s->cascade_apart));
       PetscCall(AdhSolverAttach_Private(s, NULL, removed, &added));
       PetscCall(AdhSolverEndCascadeApart_Private(s));
     }
@@ -52,6 +60,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
       PetscCall(AdhSolverRebuildSet_Private(s));
       loose = (PetscBool)(s->cascade_rtol > 0);
     }
+    if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s)); /* cascadelocal.c */
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
     if (!removed && !added) break;

@@ -1,0 +1,178 @@
+/* -adh_cascade_local W: after a set update lets points go, the set is solved again only within W
+   grid spacings (in x and in y) of them, the rest of the set frozen; what that shows lets go, and
+   the next local solve is around those points; when a local solve lets nothing go, the step goes
+   on with a solve of the whole set, as in the exact cascade.
+
+   Why: a receding edge lets go one ring of elements per set update, and in the exact cascade each
+   ring costs a solve of the whole set, so a step's solves grow with the grid. Letting a ring go
+   changes the pressure mostly near it: the correction is the solution of K_WW dp_W = r_W on the
+   window W, r = d - h - K p = -g the residual the tension let go leaves. A local solve needs a
+   loose tolerance only (-adh_cascade_local_rtol): it decides detachments, and every recorded
+   state still ends on a solve of the whole set and its attach test. A point let go on a local
+   solve's pressures does not come back (the attach rules of the step apply), so the states may
+   differ from the exact cascade's: the route is judged by its error against the converged
+   reference (docs/performance.md).
+
+   This build applies K_WW on the whole grid (the set's operator, masked to the window), so a
+   local iteration costs what a global one does; the saving is in the iterations (a few per local
+   solve, against about 11 for the whole set's). The window's marks are the -adh_cascade_apart
+   band's (cascadeapart.c): the points let go, widened across ranks by a PetscSF of rows. */
+#include "solver/solverimpl.h"
+
+static PetscErrorCode MatMult_Window(Mat Kww, Vec x, Vec y)
+{
+  AdhSolver s;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(Kww, &s));
+  PetscCall(AdhSolverApplyRestricted_Private(s, s->Kop, s->nwin_local, s->win_local, s->win_scatter, x, y));
+  PetscFunctionReturn(0);
+}
+
+/* The Fourier preconditioner of the set's solves, restricted to the window. */
+static PetscErrorCode PCApply_Window(PC pc, Vec r, Vec z)
+{
+  AdhSolver s;
+
+  PetscFunctionBegin;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(AdhSolverApplyRestricted_Private(s, s->Sop, s->nwin_local, s->win_local, s->win_scatter, r, z));
+  PetscFunctionReturn(0);
+}
+
+/* The local solves' KSP (options prefix adh_local_): CG from zero, preconditioned as the set's
+   solves are, to -adh_cascade_local_rtol. */
+PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver s)
+{
+  char prefix[256];
+  PC   pc;
+
+  PetscFunctionBegin;
+  PetscCall(KSPCreate(s->comm, &s->local_ksp));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sadh_local_", s->prefix ? s->prefix : ""));
+  PetscCall(KSPSetOptionsPrefix(s->local_ksp, prefix));
+  PetscCall(KSPSetType(s->local_ksp, KSPCG));
+  PetscCall(KSPSetNormType(s->local_ksp, KSP_NORM_UNPRECONDITIONED));
+  PetscCall(KSPSetTolerances(s->local_ksp, s->cascade_local_rtol, 0.0, PETSC_DEFAULT, 10000));
+  PetscCall(KSPGetPC(s->local_ksp, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, s));
+  PetscCall(PCShellSetApply(pc, PCApply_Window));
+  PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner restricted to the local solve's window"));
+  PetscCall(KSPSetFromOptions(s->local_ksp));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DestroyWindow(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&s->Kww));
+  PetscCall(VecDestroy(&s->pW));
+  PetscCall(VecDestroy(&s->bW));
+  PetscCall(VecScatterDestroy(&s->win_scatter));
+  PetscCall(PetscFree(s->win_local));
+  s->nwin_local = s->nwin = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(DestroyWindow(s));
+  PetscCall(KSPDestroy(&s->local_ksp));
+  PetscFunctionReturn(0);
+}
+
+/* The window: the points of the set among the widened marks (s->gone), its vectors, K_WW and, off
+   the direct path, the scatter to the operator's grid (the set's: the window lies in the set). */
+static PetscErrorCode BuildWindow(AdhSolver s)
+{
+  PetscInt count = 0, rstart, *idx, *opidx;
+  IS       is;
+
+  PetscFunctionBegin;
+  PetscCall(DestroyWindow(s));
+  PetscCall(KSPReset(s->local_ksp)); /* its work vectors are of the last window's size */
+  for (PetscInt k = 0; k < s->nlocal; k++) count += s->in_set[k] && s->gone[k];
+  PetscCall(PetscMalloc1(count + 1, &s->win_local));
+  for (PetscInt k = 0, n = 0; k < s->nlocal; k++)
+    if (s->in_set[k] && s->gone[k]) s->win_local[n++] = k;
+  s->nwin_local = count;
+  PetscCall(MPIU_Allreduce(&count, &s->nwin, 1, MPIU_INT, MPI_SUM, s->comm));
+  if (!s->nwin) PetscFunctionReturn(0);
+  PetscCall(VecCreateMPI(s->comm, count, s->nwin, &s->pW));
+  PetscCall(VecDuplicate(s->pW, &s->bW));
+  if (!s->direct_set) {
+    PetscCall(VecGetOwnershipRange(s->p, &rstart, NULL));
+    PetscCall(PetscMalloc2(count + 1, &idx, count + 1, &opidx));
+    for (PetscInt n = 0; n < count; n++) idx[n] = rstart + s->win_local[n];
+    PetscCall(AdhSolverOperatorIndices_Private(s, count, idx, opidx));
+    PetscCall(ISCreateGeneral(s->comm, count, opidx, PETSC_USE_POINTER, &is));
+    PetscCall(VecScatterCreate(s->pW, NULL, s->op_in, is, &s->win_scatter));
+    PetscCall(ISDestroy(&is));
+    PetscCall(PetscFree2(idx, opidx));
+  }
+  PetscCall(MatCreateShell(s->comm, count, count, s->nwin, s->nwin, s, &s->Kww));
+  PetscCall(MatShellSetOperation(s->Kww, MATOP_MULT, (void (*)(void))MatMult_Window));
+  PetscCall(MatSetOption(s->Kww, MAT_SPD, PETSC_TRUE));
+  PetscCall(KSPSetOperators(s->local_ksp, s->Kww, s->Kww));
+  PetscFunctionReturn(0);
+}
+
+/* p_W += dp_W from K_WW dp_W = -g_W, g the gap of the current p (one compliance multiply). */
+static PetscErrorCode SolveOnWindow(AdhSolver s)
+{
+  KSPConvergedReason reason;
+  PetscInt           its;
+  const PetscScalar *ga, *da;
+  PetscScalar       *ba, *pa;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverComputeGap_Private(s));
+  PetscCall(VecGetArrayRead(s->g, &ga));
+  PetscCall(VecGetArrayWrite(s->bW, &ba));
+  for (PetscInt n = 0; n < s->nwin_local; n++) ba[n] = -ga[s->win_local[n]];
+  PetscCall(VecRestoreArrayWrite(s->bW, &ba));
+  PetscCall(VecRestoreArrayRead(s->g, &ga));
+  PetscCall(VecSet(s->pW, 0.0));
+  PetscCall(KSPSolve(s->local_ksp, s->bW, s->pW));
+  PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
+  PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
+  PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The local solve of -adh_cascade_local (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_local_ksp_max_it, -adh_local_ksp_monitor)", s->nwin, (double)s->d, KSPConvergedReasons[reason], its);
+  s->step_local_solves++;
+  s->step_local_its += its;
+  s->step_ksp += its;
+  PetscCall(VecGetArray(s->p, &pa));
+  PetscCall(VecGetArrayRead(s->pW, &da));
+  for (PetscInt n = 0; n < s->nwin_local; n++) pa[s->win_local[n]] += da[n];
+  PetscCall(VecRestoreArrayRead(s->pW, &da));
+  PetscCall(VecRestoreArray(s->p, &pa));
+  s->gap_current = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The local cascade after a set update that let points go (marked in s->gone) and rebuilt the
+   set: local solves and detach tests until one lets nothing go. The set is rebuilt after each
+   test that lets points go, so the criterion's caches (keyed on the set) stay right. */
+PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s)
+{
+  PetscInt removed;
+
+  PetscFunctionBegin;
+  s->certified_stop = PETSC_FALSE; /* the tests below are of the local solves' pressures */
+  do {
+    AdhSolverCheckStop_Private(s);
+    PetscCall(AdhSolverMarkNearGone_Private(s, s->cascade_local));
+    PetscCall(BuildWindow(s));
+    if (!s->nwin) break;
+    PetscCall(SolveOnWindow(s));
+    PetscCall(PetscArrayzero(s->gone, s->nlocal));
+    s->local_pending = PETSC_TRUE;
+    PetscCall(AdhSolverDetach_Private(s, &removed));
+    s->local_pending = PETSC_FALSE;
+    if (removed) PetscCall(AdhSolverRebuildSet_Private(s));
+    PetscCall(PetscInfo(NULL, "d = %g, local solve %" PetscInt_FMT " on %" PetscInt_FMT " points: %" PetscInt_FMT " let go, %" PetscInt_FMT " in the set\n", (double)s->d, s->step_local_solves, s->nwin, removed, s->npoints));
+  } while (removed);
+  PetscCall(DestroyWindow(s));
+  PetscFunctionReturn(0);
+}

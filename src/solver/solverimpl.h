@@ -137,7 +137,8 @@ struct _n_AdhSolver {
   PetscSF   apart_sf;         /* with either: the marks of the apart_D rows beyond a rank's own (cascadeapart.c) */
   PetscInt *apart_source, *apart_rows, *apart_count;
   char     *apart_ghost, *apart_band, *apart_any;
-  PetscInt  cascade_local;    /* -adh_cascade_local W: after a set update lets points go, re-solve the set within W spacings of them only (0: off; cascadelocal.c) */
+  PetscReal cascade_local;    /* -adh_cascade_local F: after a set update lets points go, re-solve the set within F times the smallest asperities' JKR radius of them only (0: off; cascadelocal.c) */
+  PetscInt  local_W;          /* that width in grid spacings, for the current profile (0: off) */
   PetscReal cascade_local_rtol; /* the relative residual those local solves stop at */
   PetscBool local_pending;    /* a detach test whose points let go are marked for the next local solve */
   KSP       local_ksp;        /* the local solves' KSP, on the window: the set's points within W of those let go */
@@ -278,6 +279,7 @@ PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver, PetscInt w)
 PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver, Mat, PetscInt n, const PetscInt local[], VecScatter, Vec, Vec);

@@ -20,15 +20,19 @@
 
 /* The SF that brings each rank the marks of the D rows before and after its own (wrapped on a
    periodic cell, none beyond a free grid's edge), and the source of each row of the widened band;
-   D the larger of -adh_cascade_apart's and -adh_cascade_local's widths, which share the marks. */
+   D the larger of -adh_cascade_apart's and -adh_cascade_local's widths, which share the marks (made
+   again when a new profile widens the local one). */
 PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
 {
   const AdhGrid g = s->grid;
-  const PetscInt D = s->apart_D = PetscMax(s->cascade_apart, s->cascade_local), Nx = g->Nx, Ny = g->Ny;
+  const PetscInt D = PetscMax(s->cascade_apart, s->local_W), Nx = g->Nx, Ny = g->Ny;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt      ys, ym, nghost = 0, e, q;
 
   PetscFunctionBegin;
+  if (s->apart_sf && s->apart_D >= D) PetscFunctionReturn(0); /* a band as wide serves */
+  PetscCall(AdhSolverDestroyCascadeApart_Private(s));
+  s->apart_D = D;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   /* each row of the band ys - D .. ys + ym + D - 1: own row l (l), ghost row q (ym + q), or off
      the grid (-1); a wrapped row met twice (a cell of few rows) is fetched once */

@@ -18,6 +18,7 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
   if (s->setup) {
     PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
     PetscCall(AdhSolverEstimateResolution_Private(s));
+    PetscCall(AdhSolverSetLocalWidth_Private(s)); /* -adh_cascade_local's window, from that estimate */
   }
   PetscFunctionReturn(0);
 }
@@ -106,6 +107,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   s->profile_version++;
   PetscCall(AdhSolverEstimateResolution_Private(s));
+  PetscCall(AdhSolverSetLocalWidth_Private(s)); /* -adh_cascade_local's window, from that estimate */
   PetscCall(AdhSolverClearContact_Private(s));
   PetscCall(VecCopy(s->h, s->g)); /* the undeformed gap, g = h - d */
   PetscCall(VecShift(s->g, -s->d));
@@ -166,7 +168,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
     s->nlocal = nlocal;
-    if (s->cascade_apart > 0 || s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+    if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
     if (s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeLocal_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 

@@ -9,7 +9,7 @@
 #include <petscsf.h>
 
 PETSC_EXTERN PetscClassId ADH_CLASSID;
-PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits;
+PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits, ADH_LocalSolve;
 
 PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
 PETSC_EXTERN PetscErrorCode AdhUseOneBLASThread(void);

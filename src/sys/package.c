@@ -4,7 +4,7 @@
 #include "adhbem.h"
 
 PetscClassId  ADH_CLASSID;
-PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits;
+PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits, ADH_LocalSolve;
 
 static PetscBool AdhPackageInitialized = PETSC_FALSE;
 
@@ -33,6 +33,7 @@ PetscErrorCode AdhInitializePackage(void)
   PetscCall(PetscLogEventRegister("AdhPredict", ADH_CLASSID, &ADH_Predict));
   PetscCall(PetscLogEventRegister("AdhDetachTest", ADH_CLASSID, &ADH_DetachTest));
   PetscCall(PetscLogEventRegister("AdhAttachLimits", ADH_CLASSID, &ADH_AttachLimits));
+  PetscCall(PetscLogEventRegister("AdhLocalSolve", ADH_CLASSID, &ADH_LocalSolve));
   PetscCall(PetscRegisterFinalize(AdhFinalizePackage));
   PetscFunctionReturn(0);
 }

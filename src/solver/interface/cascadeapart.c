@@ -25,7 +25,9 @@
 PetscErrorCode AdhSolverSetUpCascadeApart_Private(AdhSolver s)
 {
   const AdhGrid g = s->grid;
-  const PetscInt D = PetscMax(s->cascade_apart, s->local_W), Nx = g->Nx, Ny = g->Ny;
+  /* a band of Ny rows each side marks every row already: wider adds nothing (a window of the
+     whole grid on a grid of few rows) */
+  const PetscInt D = PetscMin(PetscMax(s->cascade_apart, s->local_W), g->Ny), Nx = g->Nx, Ny = g->Ny;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt      ys, ym, nghost = 0, e, q;
 
@@ -88,13 +90,13 @@ PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* s->gone: the marked points, widened by w <= s->apart_D (in x and in y); rows of the band from
-   offset o = apart_D - w on, so that one band serves both widths (-adh_cascade_apart,
-   -adh_cascade_local). */
-PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s, PetscInt w)
+/* s->gone: the marked points, widened by w (in x and in y; in each direction at most the grid's
+   extent, which marks it all already); rows of the band from offset o = apart_D - w on, so that
+   one band serves both widths (-adh_cascade_apart, -adh_cascade_local). */
+PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s, PetscInt width)
 {
   const AdhGrid   g = s->grid;
-  const PetscInt  o = s->apart_D - w, Nx = g->Nx;
+  const PetscInt  Nx = g->Nx, wx = PetscMin(width, Nx), w = PetscMin(width, g->Ny), o = s->apart_D - w;
   const PetscBool wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt        ys, ym, e, i, j, active = 0;
   char           *band = s->apart_band, *any = s->apart_any;
@@ -102,12 +104,12 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s, PetscInt w)
   MPI_Datatype    row;
 
   PetscFunctionBegin;
-  PetscCheck(w >= 0 && o >= 0, s->comm, PETSC_ERR_PLIB, "Marks widened by %" PetscInt_FMT " on a band of %" PetscInt_FMT " rows", w, s->apart_D);
+  PetscCheck(w >= 0 && o >= 0, s->comm, PETSC_ERR_PLIB, "Marks widened by %" PetscInt_FMT " rows on a band of %" PetscInt_FMT, w, s->apart_D);
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
   PetscCall(AdhGridGetRowType(g, MPI_CHAR, &row));
   PetscCall(PetscSFBcastBegin(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(s->apart_sf, row, s->gone, s->apart_ghost, MPI_REPLACE));
-  /* along x: each row of the band, a running count of the marks within w (most rows have none) */
+  /* along x: each row of the band, a running count of the marks within wx (most rows have none) */
   for (e = o; e < o + ym + 2 * w; e++) {
     const PetscInt src = s->apart_source[e];
     const char    *row = src < 0 ? NULL : src < ym ? s->gone + src * Nx : s->apart_ghost + (src - ym) * Nx;
@@ -119,10 +121,10 @@ PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver s, PetscInt w)
       continue;
     }
 #define AT(a) (wrap ? row[((a) % Nx + Nx) % Nx] : ((a) >= 0 && (a) < Nx ? row[a] : 0))
-    for (i = -w; i <= w; i++) c += AT(i);
+    for (i = -wx; i <= wx; i++) c += AT(i);
     for (i = 0; i < Nx; i++) {
       out[i] = (char)(c > 0);
-      c += AT(i + w + 1) - AT(i - w);
+      c += AT(i + wx + 1) - AT(i - wx);
     }
 #undef AT
   }

@@ -152,6 +152,7 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   PetscScalar       *ba, *pa;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(ADH_LocalSolve, 0, 0, 0, 0));
   PetscCall(AdhSolverComputeGap_Private(s));
   PetscCall(VecGetArrayRead(s->g, &ga));
   PetscCall(VecGetArrayWrite(s->bW, &ba));
@@ -172,6 +173,7 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   PetscCall(VecRestoreArrayRead(s->pW, &da));
   PetscCall(VecRestoreArray(s->p, &pa));
   s->gap_current = PETSC_FALSE;
+  PetscCall(PetscLogEventEnd(ADH_LocalSolve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -280,7 +280,7 @@ PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver, PetscInt widened);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver, Mat, PetscInt n, const PetscInt local[], VecScatter, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);

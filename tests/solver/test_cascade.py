@@ -220,14 +220,17 @@ def test_local_cascade_with_a_window_over_the_whole_set_is_exact():
     assert local["fft_pairs"].sum() < exact["fft_pairs"].sum()
 
 
-def test_local_cascade_states_are_equilibria():
-    """Every state recorded with W = 2 (F = 1.4 of a_c = 1.34 spacings) is one the exact cascade's rules accept: the pressure on the
+@pytest.mark.parametrize("apart", [0, 3])
+def test_local_cascade_states_are_equilibria(apart):
+    """Every state recorded with W = 2 (F = 1.4 of a_c = 1.34 spacings), alone and after the
+    joins of -adh_cascade_apart 3, is one the exact cascade's rules accept: the pressure on the
     set solves the dense K_CC p = d - h_C, nothing on the set is beyond the critical tension, and
     no point off the set penetrates (pohrt-popov, penetration: the rules without averages)."""
     from common import assembled
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("serial")
-    opts = dict(ROUGH, n=24, size=24.0, path=[0.0, 0.3, -0.3], criterion="pohrt-popov", attach="penetration", cascade_local=1.4)
+    opts = dict(ROUGH, n=24, size=24.0, path=[0.0, 0.3, -0.3], criterion="pohrt-popov", attach="penetration", cascade_local=1.4,
+                cascade_apart=apart)
     s = adhbem.Solver(comm=PETSc.COMM_SELF, **opts)
     K = None
     detached = 0
@@ -267,11 +270,12 @@ def test_local_cascade_on_the_jkr_sphere():
 
 @pytest.mark.mpi
 @pytest.mark.ranks3
-@pytest.mark.parametrize("F", [2.8, 14.0])
-def test_local_cascade_on_any_number_of_ranks(F):
+@pytest.mark.parametrize("F, D", [(2.8, 0), (14.0, 0), (2.8, 8), (14.0, 4)])
+def test_local_cascade_on_any_number_of_ranks(F, D):
     """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
-    W = 20 (F = 14) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps."""
-    assert_same_on_any_ranks(dict(ROUGH, cascade_local=F))
+    W = 20 (F = 14) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps;
+    with -adh_cascade_apart D the first window widens D's marks (by none where D = 8 > W = 4)."""
+    assert_same_on_any_ranks(dict(ROUGH, cascade_local=F, cascade_apart=D))
 
 
 @pytest.mark.parametrize("args, message", [
@@ -279,7 +283,6 @@ def test_local_cascade_on_any_number_of_ranks(F):
     (["-adh_cascade_local", "nan"], "-adh_cascade_local must be >= 0"),
     (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
     (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
-    (["-adh_cascade_local", "8", "-adh_cascade_apart", "8"], "-adh_cascade_local and -adh_cascade_apart cannot be combined"),
 ])
 def test_bad_cascade_local_is_refused(tmp_path, args, message):
     import subprocess

@@ -177,10 +177,12 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* The local cascade after a set update that let points go (marked in s->gone) and rebuilt the
-   set: local solves and detach tests until one lets nothing go. The set is rebuilt after each
-   test that lets points go, so the criterion's caches (keyed on the set) stay right. */
-PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s)
+/* The local cascade after a set update that let points go (marked in s->gone, and widened by
+   `widened` already: -adh_cascade_apart's D, whose joins came first) and rebuilt the set: local
+   solves and detach tests until one lets nothing go. Square widenings add up, so the first
+   window is widened by the rest only (by none where D is the wider). The set is rebuilt after
+   each test that lets points go, so the criterion's caches (keyed on the set) stay right. */
+PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s, PetscInt widened)
 {
   PetscInt removed;
 
@@ -188,7 +190,8 @@ PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s)
   s->certified_stop = PETSC_FALSE; /* the tests below are of the local solves' pressures */
   do {
     AdhSolverCheckStop_Private(s);
-    PetscCall(AdhSolverMarkNearGone_Private(s, s->local_W));
+    PetscCall(AdhSolverMarkNearGone_Private(s, PetscMax(s->local_W - widened, 0)));
+    widened = 0;
     PetscCall(BuildWindow(s));
     if (!s->nwin) break;
     PetscCall(SolveOnWindow(s));

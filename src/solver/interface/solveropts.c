@@ -122,7 +122,6 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->cascade_local >= 0 && !PetscIsInfOrNanReal(s->cascade_local), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local must be >= 0 (times the JKR contact radius), got %g", (double)s->cascade_local);
   PetscCheck(s->cascade_local_rtol > 0 && s->cascade_local_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local_rtol must lie in (0, 1), got %g", (double)s->cascade_local_rtol);
   PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
-  PetscCheck(!(s->cascade_local > 0 && s->cascade_apart > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local and -adh_cascade_apart cannot be combined (both mark the points a set update lets go)");
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);

@@ -11,7 +11,7 @@
 /* Displacement control: the equilibrium set at indentation d, from the current set. */
 static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
 {
-  PetscInt        outer, removed, added;
+  PetscInt        outer, removed, added, widened;
   const PetscBool had_contact = s->npoints > 0;
   PetscBool       loose; /* -adh_cascade_rtol: the next solve may stop early */
 
@@ -47,10 +47,12 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
       continue;
     }
     PetscCheck(removed || !s->certified_stop, s->comm, PETSC_ERR_PLIB, "Certified early stop without a point to detach");
-    added = 0;
+    added   = 0;
+    widened = 0; /* how far the marks of the points let go have been widened */
     if (!removed) PetscCall(AdhSolverAttach_Private(s, NULL, 0, &added));
     else if (s->apart_pending) { /* -adh_cascade_apart: join away from the points let go */
       PetscCall(AdhSolverMarkNearGone_Private(s, s->cascade_apart));
+      widened = s->cascade_apart;
       PetscCall(AdhSolverAttach_Private(s, NULL, removed, &added));
       PetscCall(AdhSolverEndCascadeApart_Private(s));
     }
@@ -60,7 +62,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
       PetscCall(AdhSolverRebuildSet_Private(s));
       loose = (PetscBool)(s->cascade_rtol > 0);
     }
-    if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s)); /* cascadelocal.c */
+    if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s, widened)); /* cascadelocal.c */
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
     if (!removed && !added) break;

@@ -2,7 +2,7 @@
 and grid.
 
     ./run bench criterion [--criterion pohrt-popov,crack-closure] [--radius R] [--radius-max R] [--cascade-rtol R]
-        [--cascade-apart D] [--cascade-local W] [--quick] [--fine]
+        [--cascade-apart D] [--cascade-local F] [--quick] [--fine]
 
 A contact that holds tension lets go where the criterion says so. At that state the analytic
 solution of the case gives back the work of adhesion the criterion acted with: dgamma_eff. A
@@ -219,7 +219,7 @@ def main():
                     " equal to the radius: a fixed window)")
     ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
     ap.add_argument("--cascade-apart", type=int, help="joins in set updates that let points go, this many spacings from them (-adh_cascade_apart)")
-    ap.add_argument("--cascade-local", type=int, help="local solves within this many spacings of the points a set update lets go (-adh_cascade_local)")
+    ap.add_argument("--cascade-local", type=float, help="local solves within F times the estimated JKR radius a_c of the points a set update lets go (-adh_cascade_local)")
     ap.add_argument("--quick", action="store_true", help="the coarse grids only")
     ap.add_argument("--fine", action="store_true", help="also a third, finer grid for the sphere and the punch")
     args = ap.parse_args()

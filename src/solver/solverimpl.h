@@ -139,6 +139,8 @@ struct _n_AdhSolver {
   char     *apart_ghost, *apart_band, *apart_any;
   PetscReal cascade_local;    /* -adh_cascade_local F: after a set update lets points go, re-solve the set within F times the smallest asperities' JKR radius of them only (0: off; cascadelocal.c) */
   PetscInt  local_W;          /* that width in grid spacings, for the current profile (0: off) */
+  PetscBool local_whole;      /* that window covers the grid: the window is the set, no marks needed */
+  void     *local_converged;  /* the local KSP's default convergence test's context */
   PetscReal cascade_local_rtol; /* the relative residual those local solves stop at */
   PetscBool local_pending;    /* a detach test whose points let go are marked for the next local solve */
   KSP       local_ksp;        /* the local solves' KSP, on the window: the set's points within W of those let go */
@@ -146,7 +148,7 @@ struct _n_AdhSolver {
   Vec       pW, bW;           /* correction and right-hand side on the window */
   PetscInt *win_local, nwin_local, nwin; /* local offsets of this rank's points in the window; its global size */
   VecScatter win_scatter;     /* window values -> the operator's grid (not on the direct path) */
-  PetscInt  step_local_solves, step_local_its; /* this step's local solves and their KSP iterations */
+  PetscInt  step_local_solves; /* this step's local solves */
   PetscInt  step_largest;     /* the largest set of the current step (points) */
   PetscInt  nlocal;
   AdhAttach attach;

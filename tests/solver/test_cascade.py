@@ -197,19 +197,20 @@ def test_apart_cascade_loading_branch_is_jkr():
 
 # -adh_cascade_local F: after a set update lets points go, local solves within F times the
 # smallest asperities' JKR radius of them (W grid spacings), until one lets nothing go; then the
-# whole set again (docs/performance.md). ROUGH's estimated a_c is 1.43 spacings.
+# whole set again (docs/performance.md). ROUGH's estimated a_c is 1.428 spacings; the F below lie
+# well inside the intervals that give the widths named.
 
 
 def test_local_cascade_with_a_window_over_the_whole_set_is_exact():
     """With a window beyond the cell (capped at the cell's 48 spacings) and local solves to 1e-10
     every local solve is a solve of the whole set, so the states are the exact cascade's, state for
     state (the marks reach across the periodic cell's edges), in fewer solves of the whole set;
-    W = 4 (F = 2.8) takes fewer FFT pairs."""
+    W = 4 (F = 2.5) takes fewer FFT pairs."""
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("serial")
     exact = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH).solve_path()
     whole = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=100.0, cascade_local_rtol=1e-10, **ROUGH).solve_path()
-    local = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=2.8, **ROUGH).solve_path()
+    local = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=2.5, **ROUGH).solve_path()
     say(f"\nrough 48^2: set updates exact {int(exact['outer_iterations'].sum())}, whole window {int(whole['outer_iterations'].sum())},"
         f" W = 4 {int(local['outer_iterations'].sum())}; FFT pairs {int(exact['fft_pairs'].sum())},"
         f" {int(whole['fft_pairs'].sum())}, {int(local['fft_pairs'].sum())}")
@@ -270,10 +271,10 @@ def test_local_cascade_on_the_jkr_sphere():
 
 @pytest.mark.mpi
 @pytest.mark.ranks3
-@pytest.mark.parametrize("F, D", [(2.8, 0), (14.0, 0), (2.8, 8), (14.0, 4)])
+@pytest.mark.parametrize("F, D", [(2.5, 0), (13.7, 0), (2.5, 8), (13.7, 4)])
 def test_local_cascade_on_any_number_of_ranks(F, D):
     """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
-    W = 20 (F = 14) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps;
+    W = 20 (F = 13.7) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps;
     with -adh_cascade_apart D the first window widens D's marks (by none where D = 8 > W = 4)."""
     assert_same_on_any_ranks(dict(ROUGH, cascade_local=F, cascade_apart=D))
 
@@ -293,3 +294,15 @@ def test_bad_cascade_local_is_refused(tmp_path, args, message):
                         "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
     assert r.returncode != 0 and message in r.stderr + r.stdout
     assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())
+
+
+@pytest.mark.mpi
+@pytest.mark.ranks3
+def test_local_cascade_on_any_number_of_ranks_free_boundary():
+    """The JKR sphere on the free boundary (its bounding-box window: the local solves scatter onto
+    it) with a window of half a JKR radius: COMM_WORLD against COMM_SELF as above."""
+    ac = 12.0 / 48
+    gamma = gamma_for(ac)
+    ac, dc, Fadh = jkr_scales(gamma)
+    assert_same_on_any_ranks(dict(n=48, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz",
+                                  path=[(1.3 * ac) ** 2 / R, -4 * dc], steps=20, cascade_local=0.5))

@@ -57,10 +57,30 @@ PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver s)
 {
   const PetscInt whole = PetscMax(s->grid->Nx, s->grid->Ny);
 
+  PetscBool       periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+
   PetscFunctionBegin;
   if (!(s->cascade_local > 0)) PetscFunctionReturn(0);
   s->local_W = s->asperity_ac > 0 ? (PetscInt)PetscMin((PetscReal)whole, PetscMax(1.0, PetscCeilReal(s->cascade_local * s->asperity_ac))) : whole;
-  PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+  /* every point within W of every other (on a periodic cell the farthest lies N/2 away) */
+  s->local_whole = (PetscBool)(periodic ? 2 * s->local_W >= whole : s->local_W >= whole - 1);
+  if (!s->local_whole) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+  PetscFunctionReturn(0);
+}
+
+/* PETSc's default test, and a signal stops the path within an iteration (as the set's solves do) */
+static PetscErrorCode ConvergedLocal(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
+{
+  AdhSolver s = (AdhSolver)ctx;
+  PetscBool stop;
+
+  PetscFunctionBegin;
+  PetscCall(AdhSolverStopRequested_Private(s, &stop));
+  if (stop) {
+    *reason = KSP_DIVERGED_NULL;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, s->local_converged));
   PetscFunctionReturn(0);
 }
 
@@ -83,6 +103,8 @@ PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver s)
   PetscCall(PCShellSetContext(pc, s));
   PetscCall(PCShellSetApply(pc, PCApply_Window));
   PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner restricted to the local solve's window"));
+  PetscCall(KSPConvergedDefaultCreate(&s->local_converged));
+  PetscCall(KSPSetConvergenceTest(s->local_ksp, ConvergedLocal, s, NULL));
   PetscCall(KSPSetFromOptions(s->local_ksp));
   PetscFunctionReturn(0);
 }
@@ -96,6 +118,7 @@ static PetscErrorCode DestroyWindow(AdhSolver s)
   PetscCall(VecScatterDestroy(&s->win_scatter));
   PetscCall(PetscFree(s->win_local));
   s->nwin_local = s->nwin = 0;
+  if (s->local_ksp) PetscCall(KSPReset(s->local_ksp)); /* its work vectors are the window's */
   PetscFunctionReturn(0);
 }
 
@@ -104,11 +127,14 @@ PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(DestroyWindow(s));
   PetscCall(KSPDestroy(&s->local_ksp));
+  if (s->local_converged) PetscCall(KSPConvergedDefaultDestroy(s->local_converged));
+  s->local_converged = NULL;
   PetscFunctionReturn(0);
 }
 
-/* The window: the points of the set among the widened marks (s->gone), its vectors, K_WW and, off
-   the direct path, the scatter to the operator's grid (the set's: the window lies in the set). */
+/* The window: the points of the set among the widened marks (s->gone; all of them where the
+   window covers the grid), its vectors, K_WW and, off the direct path, the scatter to the
+   operator's grid (the set's: the window lies in the set). */
 static PetscErrorCode BuildWindow(AdhSolver s)
 {
   PetscInt count = 0, rstart, *idx, *opidx;
@@ -116,11 +142,12 @@ static PetscErrorCode BuildWindow(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(DestroyWindow(s));
-  PetscCall(KSPReset(s->local_ksp)); /* its work vectors are of the last window's size */
-  for (PetscInt k = 0; k < s->nlocal; k++) count += s->in_set[k] && s->gone[k];
+#define IN_WINDOW(k) (s->in_set[k] && (s->local_whole || s->gone[k]))
+  for (PetscInt k = 0; k < s->nlocal; k++) count += IN_WINDOW(k);
   PetscCall(PetscMalloc1(count + 1, &s->win_local));
   for (PetscInt k = 0, n = 0; k < s->nlocal; k++)
-    if (s->in_set[k] && s->gone[k]) s->win_local[n++] = k;
+    if (IN_WINDOW(k)) s->win_local[n++] = k;
+#undef IN_WINDOW
   s->nwin_local = count;
   PetscCall(MPIU_Allreduce(&count, &s->nwin, 1, MPIU_INT, MPI_SUM, s->comm));
   if (!s->nwin) PetscFunctionReturn(0);
@@ -163,10 +190,13 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   PetscCall(KSPSolve(s->local_ksp, s->bW, s->pW));
   PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
+  s->step_ksp += its;
+  if (s->stoppable && s->stop_signal) { /* stopped: the step is abandoned */
+    PetscCall(PetscLogEventEnd(ADH_LocalSolve, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_ERR_SIG);
+  }
   PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The local solve of -adh_cascade_local (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_local_ksp_max_it, -adh_local_ksp_monitor)", s->nwin, (double)s->d, KSPConvergedReasons[reason], its);
   s->step_local_solves++;
-  s->step_local_its += its;
-  s->step_ksp += its;
   PetscCall(VecGetArray(s->p, &pa));
   PetscCall(VecGetArrayRead(s->pW, &da));
   for (PetscInt n = 0; n < s->nwin_local; n++) pa[s->win_local[n]] += da[n];
@@ -190,13 +220,13 @@ PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s, PetscInt widened)
   s->certified_stop = PETSC_FALSE; /* the tests below are of the local solves' pressures */
   do {
     AdhSolverCheckStop_Private(s);
-    PetscCall(AdhSolverMarkNearGone_Private(s, PetscMax(s->local_W - widened, 0)));
+    if (!s->local_whole) PetscCall(AdhSolverMarkNearGone_Private(s, PetscMax(s->local_W - widened, 0)));
     widened = 0;
     PetscCall(BuildWindow(s));
     if (!s->nwin) break;
     PetscCall(SolveOnWindow(s));
-    PetscCall(PetscArrayzero(s->gone, s->nlocal));
-    s->local_pending = PETSC_TRUE;
+    if (!s->local_whole) PetscCall(PetscArrayzero(s->gone, s->nlocal));
+    s->local_pending = (PetscBool)!s->local_whole;
     PetscCall(AdhSolverDetach_Private(s, &removed));
     s->local_pending = PETSC_FALSE;
     if (removed) PetscCall(AdhSolverRebuildSet_Private(s));

@@ -75,7 +75,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
   s->step_outer = 0;
   s->step_ksp   = 0;
-  s->step_local_solves = s->step_local_its = 0;
+  s->step_local_solves = 0;
   if (s->pulled_off) {
     /* The last step ended in pull-off: the bodies are apart now. */
     PetscCall(AdhSolverClearContact_Private(s));

@@ -34,7 +34,7 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
        attach test; not after a certified stop, whose iterate decides only the detachments */
     if (s->cascade_apart && !s->certified_stop) PetscCall(AdhSolverBeginCascadeApart_Private(s));
     /* -adh_cascade_local: the points let go are marked, for the local solves around them */
-    if (s->cascade_local) {
+    if (s->cascade_local && !s->local_whole) {
       PetscCall(PetscArrayzero(s->gone, s->nlocal));
       s->local_pending = PETSC_TRUE;
     }
@@ -62,9 +62,9 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
       PetscCall(AdhSolverRebuildSet_Private(s));
       loose = (PetscBool)(s->cascade_rtol > 0);
     }
-    if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s, widened)); /* cascadelocal.c */
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(PetscInfo(NULL, "d = %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", (double)d, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
+    if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s, widened)); /* cascadelocal.c */
     if (!removed && !added) break;
   }
   s->step_outer      = outer;

@@ -173,8 +173,12 @@ def test_apart_cascade_on_any_number_of_ranks(D):
     (["-adh_cascade_apart", "-1"], "-adh_cascade_apart must lie in [0, 64]"),
     (["-adh_cascade_apart", "65"], "-adh_cascade_apart must lie in [0, 64]"),
     (["-adh_cascade_apart", "8", "-adh_control", "force"], "-adh_cascade_apart: displacement control only"),
+    (["-adh_cascade_local", "-1"], "-adh_cascade_local must be >= 0"),
+    (["-adh_cascade_local", "nan"], "-adh_cascade_local must be >= 0"),
+    (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
+    (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
 ])
-def test_bad_cascade_apart_is_refused(tmp_path, args, message):
+def test_bad_cascade_options_are_refused(tmp_path, args, message):
     import subprocess
     from adhbem_build import EXE
     if PETSc.COMM_WORLD.getSize() > 1:
@@ -257,9 +261,9 @@ def test_local_cascade_states_are_equilibria(apart):
 
 
 def test_local_cascade_on_the_jkr_sphere():
-    """a_c/h = 25, with the width the docs advise (F = 3) and a narrower one (F = 1, W = 25): the
-    largest tension and the curve as close to JKR as the exact cascade's (within 1.25 times its
-    error and 0.2% of F_adh)."""
+    """a_c/h = 25, with F = 3 and F = 1 (W = 75 and 25): the largest tension and the curve as close
+    to JKR as the exact cascade's (within 1.25 times its error and 0.2% of F_adh), in fewer KSP
+    iterations (the local solves did run)."""
     exact = jkr_unloading(80, 25.0)
     for F in (3.0, 1.0):
         local = jkr_unloading(80, 25.0, cascade_local=F)
@@ -267,6 +271,7 @@ def test_local_cascade_on_the_jkr_sphere():
             f" -adh_cascade_local {F}: {local[0]:.4f}, RMS {local[1]:.4f}, KSP {local[2]}")
         assert abs(local[0] - 1) <= 1.25 * abs(exact[0] - 1) + 0.002
         assert local[1] <= 1.25 * exact[1] + 0.002
+        assert local[2] < exact[2]
 
 
 @pytest.mark.mpi
@@ -277,23 +282,6 @@ def test_local_cascade_on_any_number_of_ranks(F, D):
     W = 20 (F = 13.7) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps;
     with -adh_cascade_apart D the first window widens D's marks (by none where D = 8 > W = 4)."""
     assert_same_on_any_ranks(dict(ROUGH, cascade_local=F, cascade_apart=D))
-
-
-@pytest.mark.parametrize("args, message", [
-    (["-adh_cascade_local", "-1"], "-adh_cascade_local must be >= 0"),
-    (["-adh_cascade_local", "nan"], "-adh_cascade_local must be >= 0"),
-    (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
-    (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
-])
-def test_bad_cascade_local_is_refused(tmp_path, args, message):
-    import subprocess
-    from adhbem_build import EXE
-    if PETSc.COMM_WORLD.getSize() > 1:
-        pytest.skip("serial")
-    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "1e-3", "-adh_path", "0.01,0", *args,
-                        "-adh_output", str(tmp_path / "x.h5")], capture_output=True, text=True)
-    assert r.returncode != 0 and message in r.stderr + r.stdout
-    assert not any(p.name.startswith("x.") for p in tmp_path.iterdir())
 
 
 @pytest.mark.mpi

@@ -209,14 +209,17 @@ def test_sigkill_of_every_process(tmp_path, reference):
     restart_and_compare(tmp_path, reference, 1)
 
 
-def test_stop_within_a_step(tmp_path):
+@pytest.mark.parametrize("route", [[], ["-adh_cascade_local", "3"]], ids=["exact", "local"])
+def test_stop_within_a_step(tmp_path, route):
     """SIGTERM to the ranks while a step runs (after its first set update): the step is abandoned
-    at once, the results end with the state before it, and a restart computes it."""
+    at once, the results end with the state before it, and a restart computes it; also with the
+    local solves of -adh_cascade_local, where the signal may come inside one (and the restart
+    checks the checkpoint's route)."""
     serial_only()
     job = ["-adh_n", "256", "-adh_size", "256", "-adh_indenter", "rough", "-adh_boundary", "periodic",
            "-adh_gamma", "0.004", "-adh_start", "adhesive", "-adh_path", "0,2.0,0.3", "-adh_steps", "1",
            "-adh_fftw_planner", "estimate", "-adh_fields", "pressure", "-adh_output", "job.h5",
-           "-adh_checkpoint", "ck.h5", "-adh_monitor", "-adh_monitor_interval", "0"]
+           "-adh_checkpoint", "ck.h5", "-adh_monitor", "-adh_monitor_interval", "0", *route]
     p = start(tmp_path, *job)
     # a progress line after state 0's line: step 1 is under way
     wait_for(lambda: re.search(r"^    0 .*\n +\.\.\. d = 2", open(tmp_path / "stdout").read(), re.M), "step 1", p)

@@ -90,20 +90,24 @@ PetscErrorCode AdhCheckOptions_Private(MPI_Comm comm, const char prefix_or_null[
 static const char *const SolveTimePrefixes[] = {"ksp_view", "ksp_converged_reason", "ksp_converged_rate", "ksp_compute_", "ksp_plot_", "ksp_final_residual", NULL};
 static const char *const KSPOptionNames[]    = {"ksp_rtol", "ksp_atol", "ksp_divtol", "ksp_max_it", "ksp_type", "ksp_norm_type", "ksp_monitor", "ksp_monitor_short", "ksp_monitor_true_residual", "ksp_converged_reason", "ksp_view", "ksp_error_if_not_converged", "ksp_initial_guess_nonzero", "ksp_pc_side", "ksp_compute_eigenvalues", "ksp_view_final_residual", "pc_type", NULL};
 
-/* After the KSP's set-up from the options: every -adh_ksp_ and -adh_pc_ option under this solver's
-   prefix that neither it nor a solve reads (misspelled, or of another KSP type) is an error naming
-   it, before any solve. */
-PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
+/* After a KSP's set-up from the options: every -{which}ksp_ and -{which}pc_ option under this
+   solver's prefix that neither it nor a solve reads (misspelled, or of another KSP type) is an
+   error naming it, before any solve. which: "adh_" (the set's solves) or "adh_local_"
+   (-adh_cascade_local's). */
+PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[], const char which[])
 {
   PetscInt    n;
-  char      **names, **values, message[512] = "";
-  size_t      plen   = 0;
+  char      **names, **values, message[512] = "", kspname[64], pcname[64];
+  size_t      plen   = 0, wlen = 0;
   const char *prefix = prefix_or_null ? prefix_or_null : "";
   KSPType     type;
 
   PetscFunctionBegin;
   PetscCall(KSPGetType(ksp, &type));
   PetscCall(PetscStrlen(prefix, &plen));
+  PetscCall(PetscStrlen(which, &wlen));
+  PetscCall(PetscSNPrintf(kspname, sizeof(kspname), "%sksp_", which));
+  PetscCall(PetscSNPrintf(pcname, sizeof(pcname), "%spc_", which));
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n && !message[0]; k++) {
     const char *name = names[k][0] == '-' ? names[k] + 1 : names[k], *inner;
@@ -112,10 +116,10 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
     PetscCall(PetscStrncmp(name, prefix, plen, &ours));
     if (!ours) continue;
     name += plen;
-    PetscCall(PetscStrncmp(name, "adh_ksp_", 8, &ksp));
-    PetscCall(PetscStrncmp(name, "adh_pc_", 7, &pc));
+    PetscCall(PetscStrncmp(name, kspname, wlen + 4, &ksp));
+    PetscCall(PetscStrncmp(name, pcname, wlen + 3, &pc));
     if (!ksp && !pc) continue;
-    inner = name + 4;
+    inner = name + wlen;
     for (const char *const *p = SolveTimePrefixes; *p && !later; p++) PetscCall(PetscStrncmp(inner, *p, strlen(*p), &later));
     if (later) continue;
     for (PetscInt o = 0; KSPOptionNames[o]; o++) {
@@ -125,7 +129,7 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
         nearest = o;
       }
     }
-    if (best <= 3) PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner (did you mean -%sadh_%s?)", prefix, name, type, prefix, KSPOptionNames[nearest]));
+    if (best <= 3) PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner (did you mean -%s%s%s?)", prefix, name, type, prefix, which, KSPOptionNames[nearest]));
     else PetscCall(PetscSNPrintf(message, sizeof(message), "Option -%s%s is not read by the solver's KSP (%s) or its preconditioner: misspelled, or an option of another KSP or PC type", prefix, name, type));
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
@@ -136,7 +140,7 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[])
   {
     char      option[256];
     PetscBool guess;
-    PetscCall(PetscSNPrintf(option, sizeof(option), "-%sadh_ksp_guess_type", prefix));
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%s%sksp_guess_type", prefix, which));
     PetscCall(PetscOptionsHasName(NULL, NULL, option, &guess));
     PetscCheck(!guess, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_INCOMP, "%s: PETSc's initial guesses (KSPGuess) need one operator size, and the contact set changes size at every set update; each solve starts from the pressures of the last one instead", option);
   }

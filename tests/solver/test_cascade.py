@@ -177,6 +177,8 @@ def test_apart_cascade_on_any_number_of_ranks(D):
     (["-adh_cascade_local", "nan"], "-adh_cascade_local must be >= 0"),
     (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
     (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
+    (["-adh_cascade_local", "3", "-adh_local_ksp_rtl", "1e-3"], "did you mean -adh_local_ksp_rtol?"),
+    (["-adh_cascade_local", "3", "-adh_local_ksp_guess_type", "fischer"], "-adh_local_ksp_guess_type: PETSc's initial guesses"),
 ])
 def test_bad_cascade_options_are_refused(tmp_path, args, message):
     import subprocess

@@ -106,6 +106,7 @@ PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver s)
   PetscCall(KSPConvergedDefaultCreate(&s->local_converged));
   PetscCall(KSPSetConvergenceTest(s->local_ksp, ConvergedLocal, s, NULL));
   PetscCall(KSPSetFromOptions(s->local_ksp));
+  PetscCall(AdhCheckKSPOptions_Private(s->local_ksp, s->prefix, "adh_local_"));
   PetscFunctionReturn(0);
 }
 

@@ -186,7 +186,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: periodic stiffness E*|q|/2 restricted to the contact set"));
     PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
     PetscCall(KSPSetFromOptions(s->ksp));
-    PetscCall(AdhCheckKSPOptions_Private(s->ksp, s->prefix));
+    PetscCall(AdhCheckKSPOptions_Private(s->ksp, s->prefix, "adh_"));
     PetscCall(WarnFreeTopography(s));
     if (s->cops.setup) PetscCall(s->cops.setup(s));
     if (s->crops.setup) PetscCall(s->crops.setup(s));

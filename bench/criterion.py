@@ -2,7 +2,8 @@
 and grid.
 
     ./run bench criterion [--criterion pohrt-popov,crack-closure] [--radius R] [--radius-max R] [--cascade-rtol R]
-        [--cascade-apart D] [--cascade-local F] [--quick] [--fine]
+        [--cascade-apart D] [--cascade-local F]
+        [--cascade-local-rtol R] [--quick] [--fine]
 
 A contact that holds tension lets go where the criterion says so. At that state the analytic
 solution of the case gives back the work of adhesion the criterion acted with: dgamma_eff. A
@@ -220,6 +221,7 @@ def main():
     ap.add_argument("--cascade-rtol", type=float, help="the solves between set updates to this relative residual (-adh_cascade_rtol)")
     ap.add_argument("--cascade-apart", type=int, help="joins in set updates that let points go, this many spacings from them (-adh_cascade_apart)")
     ap.add_argument("--cascade-local", type=float, help="local solves within F times the estimated JKR radius a_c of the points a set update lets go (-adh_cascade_local)")
+    ap.add_argument("--cascade-local-rtol", type=float, help="the relative residual of those local solves (-adh_cascade_local_rtol)")
     ap.add_argument("--quick", action="store_true", help="the coarse grids only")
     ap.add_argument("--fine", action="store_true", help="also a third, finer grid for the sphere and the punch")
     args = ap.parse_args()
@@ -233,6 +235,8 @@ def main():
         OPTIONS["cascade_apart"] = args.cascade_apart
     if args.cascade_local is not None:
         OPTIONS["cascade_local"] = args.cascade_local
+    if args.cascade_local_rtol is not None:
+        OPTIONS["cascade_local_rtol"] = args.cascade_local_rtol
     cases = [(wave, (256, 1, 0)), (wave, (512, 1, 0)), (wave, (2048, 1, 0)), (wave, (256, 2, 1)), (wave, (256, 1, 1)),
              (wave, (512, 4, 1)), (wave, (512, 3, 1)), (wave, (512, 5, 2)),
              (sphere, (25,)), (cone, (40,)), (punch, (17.5,))]

@@ -55,9 +55,8 @@ static PetscErrorCode PCApply_Window(PC pc, Vec r, Vec z)
    changes with it), and the band of marks widened to it. */
 PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver s)
 {
-  const PetscInt whole = PetscMax(s->grid->Nx, s->grid->Ny);
-
-  PetscBool       periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
+  const PetscInt  whole    = PetscMax(s->grid->Nx, s->grid->Ny);
+  const PetscBool periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
 
   PetscFunctionBegin;
   if (!(s->cascade_local > 0)) PetscFunctionReturn(0);

@@ -18,7 +18,7 @@
    The frozen rest is a bias, not only an error: the set's points beyond the window would take up
    part of the tension let go, and held fixed they leave it all to the window, whose points then
    let go too early. Measured on the resolved rough cell, a window of 1.6 JKR radii or less took
-   1-2% off the largest tension and up to 16% off the loop's energy; the docs give the table.
+   up to 3.4% off the largest tension and up to 18% off the loop's energy; the docs give the table.
 
    This build applies K_WW on the whole grid (the set's operator, masked to the window), so a
    local iteration costs what a global one does and the width costs nothing; the saving is in the

@@ -186,8 +186,7 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   for (PetscInt n = 0; n < s->nwin_local; n++) ba[n] = -ga[s->win_local[n]];
   PetscCall(VecRestoreArrayWrite(s->bW, &ba));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
-  PetscCall(VecSet(s->pW, 0.0));
-  PetscCall(KSPSolve(s->local_ksp, s->bW, s->pW));
+  PetscCall(KSPSolve(s->local_ksp, s->bW, s->pW)); /* from zero: pW is new (zeroed) with each window */
   PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
   s->step_ksp += its;

@@ -68,7 +68,7 @@ the table says so.
 
     ./run bench convergence [--config unresolved|moderate|resolved|all] [--quick] [--n N1,N2,N3] [--np P]
         [--steps K] [--legs 3|2] [--gamma G] [--criteria pohrt-popov,crack-closure] [--seed S] [--depth F]
-        [--perturb K [--perturb-size EPS]] [--json FILE] [--keep DIR] [-- OPTIONS]
+        [--perturb K [--perturb-size EPS] [--perturb-first M]] [--json FILE] [--keep DIR] [-- OPTIONS]
 
 --gamma overrides the configurations' dgamma (units of the coarsest spacing, E* = 1); --keep DIR
 keeps each run's results file (CONFIG_CRITERION_N.h5 and .csv); further adhbem options go after --.
@@ -76,7 +76,8 @@ keeps each run's results file (CONFIG_CRITERION_N.h5 and .csv); further adhbem o
 their rms, independent Gaussian noise per sample, and reports each quantity's mean and standard
 deviation over the K + 1 runs: a cascade's avalanches can tip either way on a perturbation far
 below any physical scale, and this spread is how much of the answer the data determine (the
-yardstick for a faster route whose contact sets differ from the exact cascade's).
+yardstick for a faster route whose contact sets differ from the exact cascade's). --perturb-first M
+numbers the perturbations from M, so a second ensemble draws other samples than the first.
 """
 import argparse
 import importlib.util
@@ -414,12 +415,12 @@ def study(name, a, sizes, criteria):
             # the same run on heights perturbed by a relative amount far below any physical scale:
             # how much of the answer the data determine (a cascade's avalanches can tip either way)
             samples = [q]
-            for m in range(a.perturb):
+            for m in range(a.perturb_first, a.perturb_first + a.perturb):
                 noise = np.random.default_rng([a.seed, n, m]).standard_normal(Z[n].shape)
                 hm = zmax - Z[n] + a.perturb_size * float(Z[n].std()) * noise
                 cm, _, cpum, wallm = run(s, n, hm, d1, gamma, crit, a.steps, a.np, a.legs, a.extra, None, name)
                 samples.append(quantities(cm, d1, s.L)[0])
-                print(f"[{name} {crit} N = {n}, perturbed {m + 1}/{a.perturb}: CPU {cpum:.1f} s]", file=sys.stderr, flush=True)
+                print(f"[{name} {crit} N = {n}, perturbed {m + 1 - a.perturb_first}/{a.perturb}: CPU {cpum:.1f} s]", file=sys.stderr, flush=True)
             if a.perturb:
                 results[crit][n]["perturbed"] = samples[1:]
                 # a sample that pulled off before d1/2 has no force there: the others still count
@@ -461,6 +462,8 @@ def main():
     ap.add_argument("--perturb", type=int, default=0, metavar="K",
                     help="also run each case K more times on heights perturbed by --perturb-size of their rms, and report the spread")
     ap.add_argument("--perturb-size", type=float, default=1e-6, help="relative size of --perturb's perturbation (default 1e-6)")
+    ap.add_argument("--perturb-first", type=int, default=0, metavar="M",
+                    help="number the perturbations from M (default 0): a second ensemble of other samples, for bench work_precision's A.json+B.json")
     ap.add_argument("--json", help="write all numbers to this JSON file")
     ap.add_argument("--keep", help="keep the results files in this directory")
     ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
@@ -468,8 +471,8 @@ def main():
     sizes = [int(v) for v in a.n.split(",")] if a.n else [48, 96, 192] if a.quick else [128, 256, 512]
     if len(sizes) < 3:
         ap.error("--n: three grids (or more) are needed for the observed order")
-    if a.perturb < 0 or not a.perturb_size > 0:
-        ap.error("--perturb must be >= 0 and --perturb-size > 0")
+    if a.perturb < 0 or not a.perturb_size > 0 or a.perturb_first < 0:
+        ap.error("--perturb and --perturb-first must be >= 0 and --perturb-size > 0")
     criteria = [c for c in a.criteria.split(",") if c]
     if a.keep:
         os.makedirs(a.keep, exist_ok=True)
@@ -478,7 +481,7 @@ def main():
     print(f"# Grid convergence of adhesive rough contact: grids {', '.join(map(str, sizes))},"
           f" criteria {', '.join(criteria)}, {a.np} rank(s) a run")
     out = dict(grids=sizes, criteria=criteria, np=a.np, steps=a.steps, legs=a.legs, depth=a.depth, seed=a.seed,
-               configurations=[study(name, a, sizes, criteria) for name in configs])
+               perturb_first=a.perturb_first, perturb_size=a.perturb_size, configurations=[study(name, a, sizes, criteria) for name in configs])
     if a.json:
         with open(a.json, "w") as f:
             json.dump(finite(out), f, indent=1)

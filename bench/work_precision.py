@@ -6,6 +6,9 @@ ensemble of perturbed runs, with its cost.
     ./run bench convergence ... (the same) --json loose.json -- -adh_cascade_rtol 1e-3
     ./run bench work_precision exact.json loose=loose.json [NAME=FILE ...]
 
+A FILE may be A.json+B.json: one ensemble from several runs of bench convergence, the later ones
+with --perturb-first past the earlier ones' perturbations.
+
 A cascade's avalanches can tip either way on a perturbation of the heights far below any physical
 scale (bench convergence --perturb), so one run's distance from the converged answer is partly
 luck. The reference is the Richardson estimate (bench convergence's) from the exact cascade's
@@ -25,12 +28,36 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from convergence import QUANTITIES, richardson  # noqa: E402
 
 
-def load(path):
+def load_one(path):
     with open(path) as f:
         out = json.load(f)
     if len(out["configurations"]) != 1 or len(out["criteria"]) != 1:
         sys.exit(f"bench work_precision: {path} must hold one configuration and one criterion (--config, --criteria)")
-    return out["configurations"][0], out["criteria"][0]
+    return out
+
+
+def load(paths):
+    """One route's ensemble from A.json[+B.json...]: the runs of bench convergence on the same
+    surface and options, the later ones with --perturb-first past the earlier ones' samples. The
+    unperturbed run is the same in each (the runs are deterministic) and counts once."""
+    files = [load_one(path) for path in paths.split("+")]
+    first = files[0]
+    config, crit = first["configurations"][0], first["criteria"][0]
+    taken = []
+    for path, out in zip(paths.split("+"), files):
+        c = out["configurations"][0]
+        if out["criteria"][0] != crit or out["grids"] != first["grids"] or c["configuration"] != config["configuration"] \
+                or None not in (out.get("perturb_size"), first.get("perturb_size")) and out["perturb_size"] != first["perturb_size"]:
+            sys.exit(f"bench work_precision: {path} is another configuration, criterion, set of grids or perturbation size than {paths.split('+')[0]}")
+        k = max(len(c["results"][crit][str(n)].get("perturbed", [])) for n in out["grids"])
+        lo = out.get("perturb_first", 0)
+        if any(lo < b and a < lo + k for a, b in taken):
+            sys.exit(f"bench work_precision: {path} repeats perturbations of an earlier file (bench convergence --perturb-first)")
+        taken.append((lo, lo + k))
+        if out is not first:
+            for n in out["grids"]:
+                config["results"][crit][str(n)].setdefault("perturbed", []).extend(c["results"][crit][str(n)].get("perturbed", []))
+    return config, crit
 
 
 def samples(config, crit, n, key):

@@ -208,19 +208,22 @@ def test_apart_cascade_loading_branch_is_jkr():
 
 
 def test_local_cascade_with_a_window_over_the_whole_set_is_exact():
-    """With a window beyond the cell (capped at the cell's 48 spacings) and local solves to 1e-10
+    """With a window beyond the cell (F = inf: the whole grid; and F = 100, capped at the cell's 48
+    spacings, the same) and local solves to 1e-10
     every local solve is a solve of the whole set, so the states are the exact cascade's, state for
     state (the marks reach across the periodic cell's edges), in fewer solves of the whole set;
     W = 4 (F = 2.5) takes fewer FFT pairs."""
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("serial")
     exact = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH).solve_path()
-    whole = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=100.0, cascade_local_rtol=1e-10, **ROUGH).solve_path()
+    whole = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=float("inf"), cascade_local_rtol=1e-10, **ROUGH).solve_path()
+    capped = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=100.0, cascade_local_rtol=1e-10, **ROUGH).solve_path()
     local = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=2.5, **ROUGH).solve_path()
     say(f"\nrough 48^2: set updates exact {int(exact['outer_iterations'].sum())}, whole window {int(whole['outer_iterations'].sum())},"
         f" W = 4 {int(local['outer_iterations'].sum())}; FFT pairs {int(exact['fft_pairs'].sum())},"
         f" {int(whole['fft_pairs'].sum())}, {int(local['fft_pairs'].sum())}")
     np.testing.assert_array_equal(whole["contact_points"], exact["contact_points"])
+    np.testing.assert_array_equal(capped["force"], whole["force"])
     np.testing.assert_allclose(whole["force"], exact["force"], rtol=0, atol=1e-9 * np.abs(exact["force"]).max())
     assert whole["outer_iterations"].sum() < exact["outer_iterations"].sum()
     assert local["outer_iterations"].sum() < exact["outer_iterations"].sum()

@@ -137,7 +137,8 @@ struct _n_AdhSolver {
   PetscSF   apart_sf;         /* with either: the marks of the apart_D rows beyond a rank's own (cascadeapart.c) */
   PetscInt *apart_source, *apart_rows, *apart_count;
   char     *apart_ghost, *apart_band, *apart_any;
-  PetscReal cascade_local;    /* -adh_cascade_local F: after a set update lets points go, re-solve the set within F times the smallest asperities' JKR radius of them only (0: off; cascadelocal.c) */
+  PetscReal cascade_local;    /* -adh_cascade_local F: after a set update lets points go, re-solve the set within F times the smallest asperities' JKR radius of them only (0: off; inf: the whole grid, the default with crack-closure; cascadelocal.c) */
+  PetscBool cascade_local_set; /* F was given: no default chosen by the criterion and the control */
   PetscInt  local_W;          /* that width in grid spacings, for the current profile (0: off) */
   PetscBool local_whole;      /* that window covers the grid: the window is the set, no marks needed */
   void     *local_converged;  /* the local KSP's default convergence test's context */
@@ -281,6 +282,7 @@ PETSC_INTERN PetscErrorCode AdhSolverMarkNearGone_Private(AdhSolver, PetscInt w)
 PETSC_INTERN PetscErrorCode AdhSolverEndCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeApart_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetUpCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverDefaultCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver, PetscInt widened);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver);

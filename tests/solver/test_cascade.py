@@ -13,15 +13,18 @@ from common import _max, _min, gamma_for, jkr_scales, radius, say
 
 R = E = 1.0
 # an adhesive rough cell, approach and retraction
+# (each route below is measured against the exact cascade, -adh_cascade_local 0, and alone: the
+# default route with crack-closure is local solves on the whole grid)
 ROUGH = dict(n=48, size=48.0, gamma=0.004, indenter="rough", boundary="periodic", start="adhesive",
-             hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8)
+             hurst=0.8, rms_slope=0.1, seed=3, path=[0.0, 0.5, -0.3], steps=8, cascade_local=0)
 
 
 def jkr_unloading(N, ratio, **options):
     """The JKR sphere unloaded from a Hertz start at 1.3 a_c to d~ = -4 (60 steps): the largest
     tension over F_adh, the RMS of F~ - JKR over the stable branch after detachment started, and
-    the KSP iterations."""
+    the KSP iterations. The exact cascade unless a route is given."""
     from test_validation import D_JUMP, jkr_force
+    options.setdefault("cascade_local", 0)
     ac = ratio / N
     gamma = gamma_for(ac)
     ac, dc, Fadh = jkr_scales(gamma)
@@ -216,9 +219,9 @@ def test_local_cascade_with_a_window_over_the_whole_set_is_exact():
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("serial")
     exact = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH).solve_path()
-    whole = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=float("inf"), cascade_local_rtol=1e-10, **ROUGH).solve_path()
-    capped = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=100.0, cascade_local_rtol=1e-10, **ROUGH).solve_path()
-    local = adhbem.Solver(comm=PETSc.COMM_SELF, cascade_local=2.5, **ROUGH).solve_path()
+    whole = adhbem.Solver(comm=PETSc.COMM_SELF, **dict(ROUGH, cascade_local=float("inf"), cascade_local_rtol=1e-10)).solve_path()
+    capped = adhbem.Solver(comm=PETSc.COMM_SELF, **dict(ROUGH, cascade_local=100.0, cascade_local_rtol=1e-10)).solve_path()
+    local = adhbem.Solver(comm=PETSc.COMM_SELF, **dict(ROUGH, cascade_local=2.5)).solve_path()
     say(f"\nrough 48^2: set updates exact {int(exact['outer_iterations'].sum())}, whole window {int(whole['outer_iterations'].sum())},"
         f" W = 4 {int(local['outer_iterations'].sum())}; FFT pairs {int(exact['fft_pairs'].sum())},"
         f" {int(whole['fft_pairs'].sum())}, {int(local['fft_pairs'].sum())}")
@@ -266,11 +269,11 @@ def test_local_cascade_states_are_equilibria(apart):
 
 
 def test_local_cascade_on_the_jkr_sphere():
-    """a_c/h = 25, with F = 3 and F = 1 (W = 75 and 25): the largest tension and the curve as close
-    to JKR as the exact cascade's (within 1.25 times its error and 0.2% of F_adh), in fewer KSP
-    iterations (the local solves did run)."""
+    """a_c/h = 25, with F = inf (the whole grid, crack-closure's default), 3 and 1 (W = 75 and 25):
+    the largest tension and the curve as close to JKR as the exact cascade's (within 1.25 times its
+    error and 0.2% of F_adh), in fewer KSP iterations (the local solves did run)."""
     exact = jkr_unloading(80, 25.0)
-    for F in (3.0, 1.0):
+    for F in (math.inf, 3.0, 1.0):
         local = jkr_unloading(80, 25.0, cascade_local=F)
         say(f"\nJKR sphere a_c/h 25, exact cascade: largest tension {exact[0]:.4f} F_adh, RMS {exact[1]:.4f}, KSP {exact[2]};"
             f" -adh_cascade_local {F}: {local[0]:.4f}, RMS {local[1]:.4f}, KSP {local[2]}")
@@ -281,9 +284,10 @@ def test_local_cascade_on_the_jkr_sphere():
 
 @pytest.mark.mpi
 @pytest.mark.ranks3
-@pytest.mark.parametrize("F, D", [(2.5, 0), (13.7, 0), (2.5, 8), (13.7, 4)])
+@pytest.mark.parametrize("F, D", [(math.inf, 0), (2.5, 0), (13.7, 0), (2.5, 8), (13.7, 4)])
 def test_local_cascade_on_any_number_of_ranks(F, D):
-    """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10;
+    """COMM_WORLD against COMM_SELF, the same contact counts and KSP iterations, forces to 1e-10
+    (F = inf: crack-closure's default route);
     W = 20 (F = 13.7) reaches past the neighbouring rank's rows on 3 ranks (16 rows each) and wraps;
     with -adh_cascade_apart D the first window widens D's marks (by none where D = 8 > W = 4)."""
     assert_same_on_any_ranks(dict(ROUGH, cascade_local=F, cascade_apart=D))

@@ -25,7 +25,7 @@ def serial_only():
 def test_option_list_is_what_help_shows():
     serial_only()
     r = subprocess.run([EXE, "-help", "-adh_path", "0.01,0", "-adh_steps", "1"], capture_output=True, text=True)
-    shown = {m for m in re.findall(r"^\s*-(adh_[A-Za-z0-9_]+)", r.stdout, re.M) if not m.startswith(("adh_ksp_", "adh_pc_"))}
+    shown = {m for m in re.findall(r"^\s*-(adh_[A-Za-z0-9_]+)", r.stdout, re.M) if not m.startswith(("adh_ksp_", "adh_pc_", "adh_local_ksp_", "adh_local_pc_"))}
     assert shown == set(_adhbem.option_names())
 
 

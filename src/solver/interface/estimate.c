@@ -20,7 +20,7 @@
    same); -adh_attach griffith a fourth buffer, of p (its limits are kept over G);
    -adh_criterion_certify the slots of its front's cache (one PetscInt; its entries, about 1 kB a
    front point, go with the front, not the grid, and are not counted); -adh_cascade_apart or
-   -adh_cascade_local their marks and widened band (2 bytes, and per rank the band's D rows each
+   -adh_cascade_local with a finite F (a window of the whole grid needs none) their marks and widened band (2 bytes, and per rank the band's D rows each
    side and the other ranks' among them; the local solves' vectors are on the window, and the
    set's KSP is reset with the set before them, their own after them, so that at most one
    window's or set's CG vectors are held at a time: not counted beyond the set's); -adh_cascade_single the float transform array (4). Each rank also holds about
@@ -40,7 +40,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || s->cascade_local > 0 ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
   /* the marks' band beyond a rank's own rows and the other ranks' rows in it: 4 D rows of bytes */
   *per_rank += 4.0 * PetscMin(PetscMax(s->cascade_apart, s->local_whole ? 0 : s->local_W), s->grid->Ny) * s->grid->Nx;

@@ -30,7 +30,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
   s->pulloff_rtol     = 1e-3;
-  s->cascade_local_rtol = 1e-2;
+  s->cascade_local_rtol = 1e-3;
   s->criterion_radius = 16.0;
   s->criterion_radius_max = 64.0;
   s->fields_stride    = 1;

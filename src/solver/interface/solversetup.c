@@ -169,6 +169,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PetscCalloc1(nlocal + 1, &s->left));
     s->nlocal = nlocal;
     if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
+    PetscCall(AdhSolverDefaultCascadeLocal_Private(s)); /* the criterion or the control may have changed since the options were read */
     if (s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeLocal_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 

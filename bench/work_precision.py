@@ -2,9 +2,13 @@
 ensemble of perturbed runs, with its cost.
 
     ./run bench convergence --config resolved --n 64,128,256 --criteria crack-closure \\
-        --perturb 4 --perturb-size 1e-4 --json exact.json
-    ./run bench convergence ... (the same) --json loose.json -- -adh_cascade_rtol 1e-3
-    ./run bench work_precision exact.json loose=loose.json [NAME=FILE ...]
+        --perturb 4 --perturb-size 1e-4 --json exact.json -- -adh_cascade_local 0
+    ./run bench convergence ... (the same) --json default.json
+    ./run bench convergence ... (the same) --json loose.json -- -adh_cascade_local 0 -adh_cascade_rtol 1e-3
+    ./run bench work_precision exact.json default=default.json loose=loose.json [NAME=FILE ...]
+
+(The first file is the reference route: the exact cascade, -adh_cascade_local 0; crack-closure's
+default is local solves on the whole grid.)
 
 A FILE may be A.json+B.json: one ensemble from several runs of bench convergence, the later ones
 with --perturb-first past the earlier ones' perturbations.

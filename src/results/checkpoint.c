@@ -16,7 +16,11 @@ typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
   PetscDataType type;
   const void   *value;
+  const void   *absent; /* the value of a checkpoint written before the option was checked (NULL: this run's) */
 } Shape;
+
+/* -adh_cascade_local was 0 (off) by default when checkpoints did not record it */
+static const PetscReal AdhCascadeLocalBefore = 0.0;
 
 /* The options that shape the problem, with this run's values. */
 #define ADH_MAX_SHAPES 28
@@ -47,7 +51,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_steps", PETSC_INT, &s->steps};
   shape[n++] = (Shape){"-adh_cascade_rtol", PETSC_REAL, &s->cascade_rtol};
   shape[n++] = (Shape){"-adh_cascade_apart", PETSC_INT, &s->cascade_apart};
-  shape[n++] = (Shape){"-adh_cascade_local", PETSC_REAL, &s->cascade_local};
+  shape[n++] = (Shape){"-adh_cascade_local", PETSC_REAL, &s->cascade_local, &AdhCascadeLocalBefore};
   if (s->cascade_local > 0) shape[n++] = (Shape){"-adh_cascade_local_rtol", PETSC_REAL, &s->cascade_local_rtol};
   /* force control's pull-off is found to this tolerance; the predictor's guess is certified, but
      where a state is not unique (rounding at a pressure of zero) it picks one: it runs only
@@ -219,11 +223,11 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
     } else if (shape[k].type == PETSC_INT) {
       PetscInt saved = 0;
       /* absent (a checkpoint written before the option was checked): taken as this run's */
-      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_INT, shape[k].value, &saved));
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_INT, shape[k].absent ? shape[k].absent : shape[k].value, &saved));
       PetscCheck(saved == *(const PetscInt *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %" PetscInt_FMT ", this run %" PetscInt_FMT, s->restart, shape[k].option, saved, *(const PetscInt *)shape[k].value);
     } else {
       PetscReal saved = 0;
-      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_REAL, shape[k].value, &saved));
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_REAL, shape[k].absent ? shape[k].absent : shape[k].value, &saved));
       PetscCheck(saved == *(const PetscReal *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %.17g, this run %.17g", s->restart, shape[k].option, (double)saved, (double)*(const PetscReal *)shape[k].value);
     }
   }

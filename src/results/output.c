@@ -377,6 +377,11 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_rtol", PETSC_REAL, &s->cascade_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_apart", PETSC_INT, &s->cascade_apart));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_local", PETSC_REAL, &s->cascade_local));
+  if (s->cascade_local > 0) {
+    PetscReal local_rtol = s->cascade_local_rtol; /* the local KSP's, which -adh_local_ksp_rtol may have changed */
+    if (s->local_ksp) PetscCall(KSPGetTolerances(s->local_ksp, &local_rtol, NULL, NULL, NULL));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_local_rtol", PETSC_REAL, &local_rtol));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));
   switch (s->indenter.type) {

@@ -216,6 +216,27 @@ def test_a_write_lock_left_by_a_killed_job_does_not_hang(tmp_path):
         assert (tmp_path / f).exists() and not (tmp_path / (f + ".part")).exists()
 
 
+def test_restart_of_a_checkpoint_from_before_the_default_route(tmp_path):
+    """A checkpoint without the -adh_cascade_local attribute was written when the exact cascade was
+    every run's route: a restart with crack-closure's default route (local solves on the whole
+    grid) is refused, naming -adh_cascade_local 0, and goes on with it."""
+    serial_only()
+    ck = tmp_path / "ck.h5"
+    run = [EXE, *OPTS, "-adh_path", "0,0.9", "-adh_steps", "3", "-adh_criterion", "crack-closure"]
+    r = subprocess.run([*run, "-adh_cascade_local", "0", "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with h5py.File(ck, "r+") as f:
+        assert float(f.attrs["-adh_cascade_local"]) == 0
+        del f.attrs["-adh_cascade_local"]
+    r = subprocess.run([*run, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode != 0 and "has -adh_cascade_local 0, this run inf" in r.stderr, r.stderr[-2000:]
+    r = subprocess.run([*run, "-adh_cascade_local", "0", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
+                       capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0, r.stderr[-2000:]
+
+
 @pytest.mark.parametrize("changed, option", [
     (["-adh_criterion_radius", "12"], "-adh_criterion_radius"),
     (["-adh_criterion_radius_max", "32"], "-adh_criterion_radius_max"),
@@ -240,6 +261,7 @@ def test_restart_that_changes_the_answer_is_refused(tmp_path, changed, option):
         assert float(f.attrs["criterion_radius"]) == 16 and float(f.attrs["criterion_radius_max"]) == 64
         # crack-closure's default route: local solves on the whole grid
         assert int(f.attrs["cascade_apart"]) == 0 and float(f.attrs["cascade_local"]) == np.inf
+        assert float(f.attrs["cascade_local_rtol"]) == 1e-3
     r = subprocess.run([*run, *changed, "-adh_restart", str(ck), "-adh_output", str(tmp_path / "x.h5")],
                        capture_output=True, text=True, env=ENV)
     assert r.returncode != 0 and f"has {option} " in r.stderr and "-adh_restart" in r.stderr, r.stderr[-2000:]

@@ -209,12 +209,12 @@ def test_sigkill_of_every_process(tmp_path, reference):
     restart_and_compare(tmp_path, reference, 1)
 
 
-@pytest.mark.parametrize("route", [[], ["-adh_cascade_local", "3"]], ids=["exact", "local"])
+@pytest.mark.parametrize("route", [["-adh_cascade_local", "0"], [], ["-adh_cascade_local", "3"]], ids=["exact", "default", "local"])
 def test_stop_within_a_step(tmp_path, route):
     """SIGTERM to the ranks while a step runs (after its first set update): the step is abandoned
-    at once, the results end with the state before it, and a restart computes it; also with the
-    local solves of -adh_cascade_local, where the signal may come inside one (and the restart
-    checks the checkpoint's route)."""
+    at once, the results end with the state before it, and a restart computes it; with the exact
+    cascade, the default route (local solves on the whole grid) and a window of -adh_cascade_local,
+    where the signal may come inside a local solve (and the restart checks the checkpoint's route)."""
     serial_only()
     job = ["-adh_n", "256", "-adh_size", "256", "-adh_indenter", "rough", "-adh_boundary", "periodic",
            "-adh_gamma", "0.004", "-adh_start", "adhesive", "-adh_path", "0,2.0,0.3", "-adh_steps", "1",

@@ -170,6 +170,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     s->nlocal = nlocal;
     if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
     PetscCall(AdhSolverDefaultCascadeLocal_Private(s)); /* the criterion or the control may have changed since the options were read */
+    PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
     if (s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeLocal_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 

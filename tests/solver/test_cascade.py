@@ -83,20 +83,22 @@ def test_loose_cascade_on_any_number_of_ranks():
     assert_same_on_any_ranks(dict(ROUGH, cascade_rtol=1e-3))
 
 
-def test_single_precision_loose_solves():
-    """-adh_cascade_single: the loose solves in float transforms (and only they). On the rough cell
+@pytest.mark.parametrize("route", [dict(cascade_rtol=1e-3), dict(cascade_local=math.inf)], ids=["loose", "local"])
+def test_single_precision_loose_solves(route):
+    """-adh_cascade_single: the loose solves in float transforms (and only they): those of
+    -adh_cascade_rtol, and the local solves of crack-closure's default route. On the rough cell
     the same contact sets and KSP iterations as in double, the forces far within the loose
-    tolerance of the double-precision loose cascade's."""
+    tolerance of the double-precision route's."""
     runs = {}
     for single in (False, True):
-        s = adhbem.Solver(comm=PETSc.COMM_SELF, **ROUGH, cascade_rtol=1e-3, cascade_single=single)
+        s = adhbem.Solver(comm=PETSc.COMM_SELF, **dict(ROUGH, **route), cascade_single=single)
         runs[single] = s.solve_path()
         info = adhbem.compliance_info(s.compliance)
         # the float transforms ran in the loose solves only (the openings' multiplies stay double)
         assert (0 < info["single_mult_count"] < info["mult_count"]) if single else info["single_mult_count"] == 0
     double, single = runs[False], runs[True]
     rel = float(np.max(np.abs(single["force"] - double["force"])) / np.max(np.abs(double["force"])))
-    say(f"\nrough cell, -adh_cascade_single: forces {rel:.2e} apart from the double-precision loose cascade's")
+    say(f"\nrough cell, {route} -adh_cascade_single: forces {rel:.2e} apart from double precision's")
     assert np.array_equal(single["contact_points"], double["contact_points"])
     assert np.array_equal(single["ksp_iterations"], double["ksp_iterations"])
     assert rel < 1e-6
@@ -113,10 +115,11 @@ def test_single_precision_loose_solves_on_the_jkr_sphere():
 
 
 @pytest.mark.mpi
-def test_single_precision_loose_solves_on_any_number_of_ranks():
+@pytest.mark.parametrize("route", [dict(cascade_rtol=1e-3), dict(cascade_local=math.inf)], ids=["loose", "local"])
+def test_single_precision_loose_solves_on_any_number_of_ranks(route):
     """As test_loose_cascade_on_any_number_of_ranks, in single precision: the float transforms of
     one and two ranks round differently, and the full solve that ends each step takes that out."""
-    assert_same_on_any_ranks(dict(ROUGH, cascade_rtol=1e-3, cascade_single=True))
+    assert_same_on_any_ranks(dict(ROUGH, cascade_single=True, **route))
 
 
 @pytest.mark.parametrize("value", ["-0.1", "1"])

@@ -192,6 +192,8 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
 {
   KSPConvergedReason reason;
   PetscInt           its;
+  PetscBool          single;
+  PetscErrorCode     ierr;
   const PetscScalar *ga, *da;
   PetscScalar       *ba, *pa;
 
@@ -203,7 +205,19 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   for (PetscInt n = 0; n < s->nwin_local; n++) ba[n] = -ga[s->win_local[n]];
   PetscCall(VecRestoreArrayWrite(s->bW, &ba));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
-  PetscCall(KSPSolve(s->local_ksp, s->bW, s->pW)); /* from zero: pW is new (zeroed) with each window */
+  /* -adh_cascade_single: a local solve stops at a loose tolerance too (1e-3 by default), far above
+     the float transforms' rounding; back to double whatever the solve returns */
+  single = (PetscBool)(s->cascade_single && s->direct_set && s->boundary == ADH_BOUNDARY_PERIODIC);
+  if (single) {
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_TRUE));
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_TRUE));
+  }
+  ierr = KSPSolve(s->local_ksp, s->bW, s->pW); /* from zero: pW is new (zeroed) with each window */
+  if (single) {
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_FALSE));
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_FALSE));
+  }
+  PetscCall(ierr);
   PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
   s->step_ksp += its;

@@ -40,7 +40,7 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
 
   PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
   griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && s->cascade_rtol > 0 ? 4.0 : 0.0);
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && (s->cascade_rtol > 0 || s->cascade_local > 0) ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
   /* the marks' band beyond a rank's own rows and the other ranks' rows in it: 4 D rows of bytes */
   *per_rank += 4.0 * PetscMin(PetscMax(s->cascade_apart, s->local_whole ? 0 : s->local_W), s->grid->Ny) * s->grid->Nx;

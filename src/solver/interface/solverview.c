@@ -3,7 +3,8 @@
 
 PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
 {
-  PetscBool isascii;
+  PetscBool   isascii;
+  const char *single = s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : "";
 
   PetscFunctionBegin;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
@@ -18,8 +19,8 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.decide && !s->force_control ? "on" : "off"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
   if (s->cascade_apart > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "points join in set updates that let others go, %" PetscInt_FMT " grid spacings from them\n", s->cascade_apart));
-  if (s->cascade_local > 0 && s->local_whole) PetscCall(PetscViewerASCIIPrintf(viewer, "after a set update lets points go, the set solved again to a relative residual %g of what they leave (-adh_cascade_local %g: the whole grid), until such a solve lets nothing go\n", (double)s->cascade_local_rtol, (double)s->cascade_local));
-  else if (s->cascade_local > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "local solves within %" PetscInt_FMT " grid spacings (%g JKR radii) of the points a set update lets go, to a relative residual %g\n", s->local_W, (double)s->cascade_local, (double)s->cascade_local_rtol));
+  if (s->cascade_local > 0 && s->local_whole) PetscCall(PetscViewerASCIIPrintf(viewer, "after a set update lets points go, the set solved again to a relative residual %g of what they leave (-adh_cascade_local %g: the whole grid)%s, until such a solve lets nothing go\n", (double)s->cascade_local_rtol, (double)s->cascade_local, single));
+  else if (s->cascade_local > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "local solves within %" PetscInt_FMT " grid spacings (%g JKR radii) of the points a set update lets go, to a relative residual %g%s\n", s->local_W, (double)s->cascade_local, (double)s->cascade_local_rtol, single));
   if (s->cascade_rtol > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "solves between set updates to a relative residual %g%s, the last of a step to the KSP's\n", (double)s->cascade_rtol, s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : ""));
   if (s->crops.setup && s->criterion_radius_max > s->criterion_radius) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings (near the detachment within the edge's radius of curvature, up to %g); attach rule %s\n", s->criterion_type, (double)s->criterion_radius, (double)s->criterion_radius_max, AdhAttaches[s->attach]));
   else if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));

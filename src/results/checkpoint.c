@@ -222,7 +222,8 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
       PetscCheck(same, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %s, this run %s", s->restart, shape[k].option, text, (const char *)shape[k].value);
     } else if (shape[k].type == PETSC_INT) {
       PetscInt saved = 0;
-      /* absent (a checkpoint written before the option was checked): taken as this run's */
+      /* absent (a checkpoint written before the option was checked): the value such checkpoints had
+         (Shape.absent), else taken as this run's; the same for reals below */
       PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_INT, shape[k].absent ? shape[k].absent : shape[k].value, &saved));
       PetscCheck(saved == *(const PetscInt *)shape[k].value, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_restart %s: the checkpoint has %s %" PetscInt_FMT ", this run %" PetscInt_FMT, s->restart, shape[k].option, saved, *(const PetscInt *)shape[k].value);
     } else {

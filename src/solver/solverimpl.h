@@ -286,6 +286,7 @@ PETSC_INTERN PetscErrorCode AdhSolverDefaultCascadeLocal_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver, PetscInt widened);
 PETSC_INTERN PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverKSPSolve_Private(AdhSolver, KSP, PetscBool loose, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver, Mat, PetscInt n, const PetscInt local[], VecScatter, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);

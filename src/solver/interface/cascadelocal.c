@@ -192,8 +192,6 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
 {
   KSPConvergedReason reason;
   PetscInt           its;
-  PetscBool          single;
-  PetscErrorCode     ierr;
   const PetscScalar *ga, *da;
   PetscScalar       *ba, *pa;
 
@@ -205,19 +203,9 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   for (PetscInt n = 0; n < s->nwin_local; n++) ba[n] = -ga[s->win_local[n]];
   PetscCall(VecRestoreArrayWrite(s->bW, &ba));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
-  /* -adh_cascade_single: a local solve stops at a loose tolerance too (1e-3 by default), far above
-     the float transforms' rounding; back to double whatever the solve returns */
-  single = (PetscBool)(s->cascade_single && s->direct_set && s->boundary == ADH_BOUNDARY_PERIODIC);
-  if (single) {
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_TRUE));
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_TRUE));
-  }
-  ierr = KSPSolve(s->local_ksp, s->bW, s->pW); /* from zero: pW is new (zeroed) with each window */
-  if (single) {
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_FALSE));
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_FALSE));
-  }
-  PetscCall(ierr);
+  /* a loose solve (1e-3 by default): in single precision under -adh_cascade_single; from zero,
+     pW being new (zeroed) with each window */
+  PetscCall(AdhSolverKSPSolve_Private(s, s->local_ksp, PETSC_TRUE, s->bW, s->pW));
   PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
   s->step_ksp += its;

@@ -320,8 +320,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   PetscInt           its, k;
   const PetscScalar *xa, *ha = NULL, *ta = NULL;
   PetscReal          tu;
-  PetscBool          field, single;
-  PetscErrorCode     ierr;
+  PetscBool          field;
   PetscScalar       *xc, *bc, *xw;
 
   PetscFunctionBegin;
@@ -362,20 +361,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous) && s->attach != ADH_ATTACH_GRIFFITH);
   s->attach_rnorm   = PETSC_MAX_REAL;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
-  /* -adh_cascade_single: a loose solve's operators in single precision (a periodic cell, whose set
-     goes straight into the transforms); its rounding, about 1e-7, lies far below its tolerance.
-     Back to double whatever the solve returns: no later solve may inherit it. */
-  single = (PetscBool)(s->solve_loose && s->cascade_single && s->direct_set && s->boundary == ADH_BOUNDARY_PERIODIC);
-  if (single) {
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_TRUE));
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_TRUE));
-  }
-  ierr = KSPSolve(s->ksp, s->bC, s->pC);
-  if (single) {
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_FALSE));
-    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_FALSE));
-  }
-  PetscCall(ierr);
+  PetscCall(AdhSolverKSPSolve_Private(s, s->ksp, s->solve_loose, s->bC, s->pC));
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;
@@ -540,5 +526,28 @@ PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver s, PetscReal d)
 {
   PetscFunctionBegin;
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && d >= s->mean_h), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: d = %g presses the periodic cell into full contact (the gap's mean is max(0, mean(h) - d), and mean(h) = %g): under displacement control the force is undetermined there; use -adh_control force", (double)d, (double)s->mean_h);
+  PetscFunctionReturn(0);
+}
+
+/* KSPSolve; a loose solve (-adh_cascade_rtol's, or a local solve of -adh_cascade_local) with
+   -adh_cascade_single applies its operators in single precision (a periodic cell, whose set goes
+   straight into the transforms): its rounding, about 1e-7, lies far below its tolerance. Back to
+   double whatever the solve returns: no later solve may inherit it. */
+PetscErrorCode AdhSolverKSPSolve_Private(AdhSolver s, KSP ksp, PetscBool loose, Vec b, Vec x)
+{
+  const PetscBool single = (PetscBool)(loose && s->cascade_single && s->direct_set && s->boundary == ADH_BOUNDARY_PERIODIC);
+  PetscErrorCode  ierr;
+
+  PetscFunctionBegin;
+  if (single) {
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_TRUE));
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_TRUE));
+  }
+  ierr = KSPSolve(ksp, b, x);
+  if (single) {
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Kop, PETSC_FALSE));
+    PetscCall(MatAdhComplianceSetSinglePrecision(s->Sop, PETSC_FALSE));
+  }
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }

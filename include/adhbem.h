@@ -284,7 +284,21 @@ PETSC_EXTERN PetscErrorCode AdhSolverComputeState(AdhSolver, AdhState *);
 PETSC_EXTERN PetscErrorCode AdhSolverView(AdhSolver, PetscViewer);
 /* The recorded state carrying the largest tension, the pull-off force (-1: none carried tension). */
 PETSC_EXTERN PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *, PetscInt *);
-/* One line on how well the grid resolves the adhesion at that state (nothing without tension). */
+/* How well the grid resolves the adhesion: the set-up estimate of the smallest asperities' (or the
+   sphere's) JKR contact radius in grid spacings, and the curve's state of the largest tension with
+   the share of its tension carried by contact patches too small to be resolved, and the verdict. */
+typedef struct {
+  PetscReal asperity_contact_radius; /* JKR contact radius at pull-off over the grid spacing (0: no estimate) */
+  PetscBool touched;                 /* some recorded state had points in contact */
+  PetscInt  state;                   /* the curve row of the largest tension (-1: no tension carried) */
+  PetscReal force;                   /* the force there (< 0) */
+  PetscReal small_patch_tension;     /* the share of its tension in patches under ADH_RESOLVED_PATCH points */
+  PetscInt  smallest_tensile_patch;  /* points of the smallest patch with a net tension there */
+  PetscBool resolved;                /* the grid resolves the adhesion (meaningful when state >= 0) */
+} AdhResolution;
+PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
+/* The lines on how well the grid resolves the adhesion (nothing without tension; a run that never
+   touched says so). */
 PETSC_EXTERN PetscErrorCode AdhSolverResolutionView(AdhSolver, PetscViewer);
 /* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
    every step too). Files appear whole or not at all. */

@@ -448,6 +448,24 @@ static PyObject *py_solver_write(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
+/* How well the grid resolves the adhesion, as the results file's attributes name it. */
+static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
+{
+  PyObject     *cap;
+  AdhResolution r;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverGetResolution(solver_get(cap), &r));
+  return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False);
+}
+
+static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  PyPetscCall(AdhSolverResolutionView(solver_get(cap), NULL));
+  Py_RETURN_NONE;
+}
+
 static PyObject *py_solver_view(PyObject *self, PyObject *args)
 {
   PyObject *cap;
@@ -472,6 +490,8 @@ static PyMethodDef methods[] = {
   {"solver_set_topography", py_solver_set_topography, METH_VARARGS, "solver_set_topography(s, vec, kind): indenter profile from a height map or gap (kind 'height' or 'gap')"},
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
+  {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
+  {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
   {"option_names", py_option_names, METH_NOARGS, "option_names() -> adhbem's own option names (adh_gamma, ...)"},

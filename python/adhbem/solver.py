@@ -339,6 +339,7 @@ class Solver:
         """Runs the option path and returns the curve. With option output, writes the results file
         (and the fields of its states with option fields)."""
         _adhbem.solver_solve_path(self._s)
+        _adhbem.solver_resolution_view(self._s)  # the lines the executable prints at the end
         return self.curve()
 
     def iterate_path(self):
@@ -379,6 +380,23 @@ class Solver:
         by pull-off (pulled_off = 1) carries less: the contact has let go there."""
         F = self.curve()["force"]
         return max(0.0, -float(F.min())) if len(F) else 0.0
+
+    @property
+    def resolution(self):
+        """How well the grid resolves the adhesion, as a dict (the lines ``solve_path()`` prints):
+
+        - ``asperity_contact_radius``: the JKR contact radius at pull-off of the sphere or of the
+          smallest asperities (from the surface's mean summit curvature), in grid spacings, estimated
+          at set-up from the profile (0.0: no estimate: no adhesion, or a shape without one);
+        - ``touched``: whether any recorded state had a point in contact;
+        - ``state``, ``force``: the curve row of the largest tension and its force (-1, 0.0: none);
+        - ``small_patch_tension``, ``smallest_tensile_patch``: there, the share of the tension
+          carried by contact patches under 314 elements, and the smallest patch with a net tension;
+        - ``resolved``: the verdict (``None`` before a state carried tension).
+
+        The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``, ...
+        """
+        return _adhbem.solver_resolution(self._s)
 
     def contact_mask(self):
         """A new Vec on the grid: 1 on the points of the contact set, 0 elsewhere."""

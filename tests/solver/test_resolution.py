@@ -113,7 +113,7 @@ def test_unresolved_rough_cell(tmp_path):
     say("\n" + "\n".join(lines))
     assert attrs["asperity_contact_radius"] < 3 and attrs["pull_off_small_patch_tension"] > 0
     assert attrs["adhesion_resolved"] == 0
-    assert len(lines) == 2 and "under 10: the pull-off depends on the grid" in lines[0]
+    assert len(lines) == 2 and "under 10: the pull-off force depends on the grid" in lines[0]
     assert "the pull-off force depends on the grid" in lines[1]
 
 

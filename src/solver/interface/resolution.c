@@ -75,22 +75,37 @@ PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
   return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS));
 }
 
+PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(r, sizeof(*r)));
+  r->asperity_contact_radius = s->asperity_ac;
+  for (PetscInt k = 0; k < s->curve.n; k++)
+    if (s->curve.state[k].contact_points > 0) r->touched = PETSC_TRUE;
+  PetscCall(AdhCurveGetPullOffState(&s->curve, &r->state));
+  if (r->state >= 0) {
+    const AdhState *st        = &s->curve.state[r->state];
+    r->force                  = st->force;
+    r->small_patch_tension    = st->small_patch_tension;
+    r->smallest_tensile_patch = st->smallest_tensile_patch;
+    r->resolved               = AdhSolverResolves_Private(s, st);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
 {
-  PetscInt        k;
-  const AdhState *st;
-  char            smallest[96];
-  PetscBool       resolved;
+  AdhResolution r;
+  char          smallest[96];
 
   PetscFunctionBegin;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
-  if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)s->asperity_ac, s->asperity_ac < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off depends on the grid)" : ""));
-  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
-  if (k < 0) PetscFunctionReturn(0);
-  st = &s->curve.state[k];
+  PetscCall(AdhSolverGetResolution(s, &r));
+  if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
+  if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off force depends on the grid)" : ""));
+  if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
-  if (st->smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, st->smallest_tensile_patch));
-  resolved = AdhSolverResolves_Private(s, st);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", k, (double)st->force, 100.0 * (double)st->small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, resolved ? "the grid resolves the adhesion" : "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes"));
+  if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, r.resolved ? "the grid resolves the adhesion" : "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes"));
   PetscFunctionReturn(0);
 }

@@ -122,6 +122,8 @@ static PetscErrorCode WarnFreeTopography(AdhSolver s)
   if (s->boundary != ADH_BOUNDARY_FREE || s->boundary_set) PetscFunctionReturn(0);
   if (s->indenter.type == ADH_INDENTER_ROUGH)
     PetscCall(PetscPrintf(s->comm, "adhbem: warning: -adh_indenter rough on the default free boundary: the periodic surface is cut to an isolated body of the grid's size, and its edges touch first; a rough surface is usually a periodic cell: add -adh_boundary periodic (-adh_boundary free keeps this and silences the warning)\n"));
+  else if (s->indenter.type == ADH_INDENTER_ARRAY)
+    PetscCall(PetscPrintf(s->comm, "adhbem: warning: a topography array on the default free boundary: it is taken as an isolated body of the grid's size; a measured or generated surface is usually a periodic cell: give boundary=\"periodic\" (-adh_boundary periodic; boundary=\"free\" keeps this and silences the warning)\n"));
   else if (s->indenter.type == ADH_INDENTER_FILE)
     PetscCall(PetscPrintf(s->comm, "adhbem: warning: -adh_topography %s on the default free boundary: it is taken as an isolated body of the grid's size; a measured or generated surface is usually a periodic cell: add -adh_boundary periodic (-adh_boundary free keeps this and silences the warning)\n", s->indenter.topography));
   PetscFunctionReturn(0);
@@ -219,11 +221,15 @@ PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind
     }
     PetscCall(VecCopy(h, s->h));
     PetscCall(VecDestroy(&h));
-    PetscCall(AdhSolverProfileChanged_Private(s));
   }
   PetscCall(PetscObjectReference((PetscObject)z));
   PetscCall(VecDestroy(&s->indenter.z));
-  s->indenter      = ind;
+  s->indenter               = ind;
   s->indenter.topography[0] = 0;
+  /* after the indenter is this topography: the resolution estimate reads its type */
+  if (s->setup) {
+    PetscCall(AdhSolverProfileChanged_Private(s));
+    PetscCall(WarnFreeTopography(s));
+  }
   PetscFunctionReturn(0);
 }

@@ -1,16 +1,128 @@
 /* The C half of the Python layer: turns libadhbem objects into real petsc4py objects.
-   PETSc errors become petsc4py's PETSc.Error. */
+   PETSc errors become Python's exceptions (SetPythonError). */
 #define PY_SSIZE_T_CLEAN
 #include <string.h>
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
 #include "adhbem.h"
 
-/* Run a PETSc call; on error set the Python exception and return NULL from the wrapper. */
+/* PETSc errors become Python's own exceptions (ValueError, FileNotFoundError, MemoryError, ...)
+   with PETSc's one-line message, as the executable prints it; the error code is kept as the
+   exception's petsc_error_code. A handler of ours sits on PETSc's stack while libadhbem runs, to
+   catch that message. -adh_traceback (an option in PETSc's database: `python job.py -adh_traceback`)
+   prints PETSc's traceback of every frame as well, as it does for the executable. */
+static char           ErrorText[1024];
+static PetscErrorCode ErrorCode;
+
+static PetscErrorCode CatchError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  if (p == PETSC_ERROR_INITIAL) {
+    ErrorCode = n;
+    if (mess && mess[0]) snprintf(ErrorText, sizeof(ErrorText), "%s", mess);
+    else {
+      const char *text = NULL;
+      (void)PetscErrorMessage(n, &text, NULL);
+      snprintf(ErrorText, sizeof(ErrorText), "%s (in %s() at %s:%d)", text ? text : "unknown error", fun ? fun : "?", file ? file : "?", line);
+    }
+  }
+  if (ctx) return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, NULL);
+  return n;
+}
+
+static void CatchErrorsBegin(void)
+{
+  PetscBool traceback = PETSC_FALSE;
+  ErrorText[0] = 0;
+  ErrorCode    = 0;
+  (void)PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL);
+  (void)PetscPushErrorHandler(CatchError, traceback ? (void *)1 : NULL);
+}
+
+static void CatchErrorsEnd(void)
+{
+  (void)PetscPopErrorHandler();
+}
+
+static PyObject *PythonExceptionType(PetscErrorCode n)
+{
+  switch (n) {
+  case PETSC_ERR_MEM: return PyExc_MemoryError;
+  case PETSC_ERR_FILE_OPEN: return PyExc_FileNotFoundError;
+  case PETSC_ERR_FILE_READ:
+  case PETSC_ERR_FILE_WRITE:
+  case PETSC_ERR_SYS: return PyExc_OSError;
+  case PETSC_ERR_SUP:
+  case PETSC_ERR_SUP_SYS: return PyExc_NotImplementedError;
+  case PETSC_ERR_INT_OVERFLOW: return PyExc_OverflowError;
+  case PETSC_ERR_SIG: return PyExc_KeyboardInterrupt; /* a stop asked by SIGINT or SIGTERM: the results so far are written */
+  case PETSC_ERR_ARG_SIZ:
+  case PETSC_ERR_ARG_IDN:
+  case PETSC_ERR_ARG_WRONG:
+  case PETSC_ERR_ARG_OUTOFRANGE:
+  case PETSC_ERR_ARG_NOTSAMETYPE:
+  case PETSC_ERR_ARG_INCOMP:
+  case PETSC_ERR_ARG_NULL:
+  case PETSC_ERR_ARG_UNKNOWN_TYPE:
+  case PETSC_ERR_FILE_UNEXPECTED: /* a file of the wrong content, as numpy.load says */
+  case PETSC_ERR_USER_INPUT: return PyExc_ValueError;
+  default: return PyExc_RuntimeError;
+  }
+}
+
+/* A Python Solver's options live under a prefix of its own (adhbem7_): the user gave them without,
+   so messages name them without (-adh_gamma, not -adhbem7_adh_gamma). */
+static void StripSolverPrefix(char *text)
+{
+  char *p = text;
+  while ((p = strstr(p, "-adhbem"))) {
+    char *q = p + 7;
+    while (*q >= '0' && *q <= '9') q++;
+    if (q > p + 7 && *q == '_') memmove(p + 1, q + 1, strlen(q + 1) + 1);
+    else p++;
+  }
+}
+
+/* The Python exception of a failed call: an exception a Python callback raised (a monitor) is
+   kept; otherwise the caught message, as the matching Python type. */
+static void SetPythonError(PetscErrorCode n)
+{
+  PyObject *type, *value, *tb, *code;
+  if (PyErr_Occurred()) return;
+  if (!ErrorText[0]) {
+    const char *text = NULL;
+    (void)PetscErrorMessage(n, &text, NULL);
+    snprintf(ErrorText, sizeof(ErrorText), "%s", text ? text : "unknown PETSc error");
+  }
+  StripSolverPrefix(ErrorText);
+  PyErr_SetString(PythonExceptionType(ErrorCode ? ErrorCode : n), ErrorText);
+  PyErr_Fetch(&type, &value, &tb);
+  PyErr_NormalizeException(&type, &value, &tb);
+  code = PyLong_FromLong((long)(ErrorCode ? ErrorCode : n));
+  if (value && code) (void)PyObject_SetAttrString(value, "petsc_error_code", code);
+  Py_XDECREF(code);
+  PyErr_Restore(type, value, tb);
+}
+
+/* After CatchErrorsBegin, a call, CatchErrorsEnd: on error set the Python exception and return NULL. */
+#define PyPetscRaise(ierr) \
+  do { \
+    if (ierr) { \
+      SetPythonError(ierr); \
+      return NULL; \
+    } \
+  } while (0)
+
+/* Run a libadhbem call; on error set the Python exception and return NULL from the wrapper. */
 #define PyPetscCall(...) \
   do { \
-    PetscErrorCode ierr_ = (__VA_ARGS__); \
-    if (ierr_) { PyPetscError_Set((int)ierr_); return NULL; } \
+    PetscErrorCode ierr_; \
+    CatchErrorsBegin(); \
+    ierr_ = (__VA_ARGS__); \
+    CatchErrorsEnd(); \
+    if (ierr_) { \
+      SetPythonError(ierr_); \
+      return NULL; \
+    } \
   } while (0)
 
 static PyObject *py_compliance(PyObject *self, PyObject *args)
@@ -34,11 +146,14 @@ static PyObject *py_compliance(PyObject *self, PyObject *args)
     return NULL;
   }
   PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
-  PyPetscCall(AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly));
   {
-    PetscErrorCode ierr = MatCreateAdhCompliance(grid, Estar, boundary, &K);
-    PyPetscCall(AdhGridDestroy(&grid)); /* also on error: no grid leaks on bad input */
-    PyPetscCall(ierr);
+    PetscErrorCode ierr;
+    CatchErrorsBegin();
+    ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
+    if (!ierr) ierr = MatCreateAdhCompliance(grid, Estar, boundary, &K);
+    CatchErrorsEnd();
+    (void)AdhGridDestroy(&grid); /* also on error: no grid leaks on bad input */
+    PyPetscRaise(ierr);
   }
   result = PyPetscMat_New(K);
   PyPetscCall(MatDestroy(&K));
@@ -60,16 +175,17 @@ static PyObject *py_rough_surface(PyObject *self, PyObject *args)
 
   if (!PyArg_ParseTuple(args, "Onndds", &pycomm, &Nx, &Ny, &Lx, &Ly, &prefix)) return NULL;
   PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
-  PyPetscCall(AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly));
-  ierr = AdhSurfaceSetFromOptions(grid->comm, prefix, &s);
+  CatchErrorsBegin();
+  ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
+  if (!ierr) ierr = AdhSurfaceSetFromOptions(grid->comm, prefix, &s);
   if (!ierr) ierr = AdhGridSetUp(grid);
   if (!ierr) ierr = AdhGridCreateVector(grid, &z);
   if (!ierr) ierr = AdhSurfaceGenerate(grid, &s, z);
+  CatchErrorsEnd();
   if (ierr) { /* no grid or Vec leaks on bad input */
     (void)VecDestroy(&z);
     (void)AdhGridDestroy(&grid);
-    PyPetscError_Set((int)ierr);
-    return NULL;
+    PyPetscRaise(ierr);
   }
   PyPetscCall(AdhGridDestroy(&grid));
   result = Py_BuildValue("N{s:d,s:d,s:d,s:n,s:s,s:d,s:d,s:d,s:d,s:d,s:d,s:n}", PyPetscVec_New(z), "hurst", (double)s.hurst, "rolloff_wavelength", (double)s.used_rolloff_wavelength, "cutoff_wavelength", (double)s.used_cutoff_wavelength, "seed", (Py_ssize_t)s.seed,
@@ -218,13 +334,14 @@ static PyObject *py_solver_create(PyObject *self, PyObject *args)
 
   if (!PyArg_ParseTuple(args, "Os", &pycomm, &prefix)) return NULL;
   PyPetscCall(AdhSolverCreate(PyPetscComm_Get(pycomm), &s));
-  PyPetscCall(AdhSolverSetOptionsPrefix(s, prefix));
-  ierr = AdhSolverSetFromOptions(s);
+  CatchErrorsBegin();
+  ierr = AdhSolverSetOptionsPrefix(s, prefix);
+  if (!ierr) ierr = AdhSolverSetFromOptions(s);
   if (!ierr) ierr = AdhSolverSetUp(s);
+  CatchErrorsEnd();
   if (ierr) {
     (void)AdhSolverDestroy(&s);
-    PyPetscError_Set((int)ierr);
-    return NULL;
+    PyPetscRaise(ierr);
   }
   return PyCapsule_New(s, "AdhSolver", solver_capsule_destroy);
 }
@@ -322,16 +439,13 @@ static PyObject *state_columns(const AdhState *st)
 }
 
 /* A Python callable as an AdhSolver monitor: fn(step, state_dict). An exception in it stops the
-   path (its traceback is printed first). */
+   path, and the call that ran the path raises it. */
 static PetscErrorCode PythonMonitor(AdhSolver s, PetscInt step, const AdhState *st, void *ctx)
 {
   PyObject *state = state_columns(st), *r;
   r = PyObject_CallFunction((PyObject *)ctx, "nO", (Py_ssize_t)step, state);
   Py_DECREF(state);
-  if (!r) {
-    PyErr_Print();
-    return PETSC_ERR_USER;
-  }
+  if (!r) return PETSC_ERR_USER; /* the exception stays set: the call that ran the path raises it */
   Py_DECREF(r);
   return 0;
 }
@@ -353,9 +467,12 @@ static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
   }
   Py_INCREF(fn);
   {
-    PetscErrorCode ierr = AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy);
+    PetscErrorCode ierr;
+    CatchErrorsBegin();
+    ierr = AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy);
+    CatchErrorsEnd();
     if (ierr) Py_DECREF(fn); /* not kept */
-    PyPetscCall(ierr);
+    PyPetscRaise(ierr);
   }
   Py_RETURN_NONE;
 }

@@ -96,7 +96,7 @@ def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavele
 
     stats: the resolved parameters and the realised statistics (realised_rms_height,
     realised_rms_slope, realised_mean, min_height, max_height, modes, ...). Bad parameters raise
-    PETSc.Error naming the option (-adh_hurst, -adh_rms_height, ...).
+    ValueError naming the option (-adh_hurst, -adh_rms_height, ...).
     """
     global _surface_count
     _surface_count += 1

@@ -195,7 +195,7 @@ PetscErrorCode AdhFieldCheck(AdhGrid grid, const char what[], Vec v)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ok, 2, MPI_INT, MPI_MIN, grid->comm));
   PetscCheck(ok[0], grid->comm, PETSC_ERR_ARG_SIZ, "%s: the Vec does not have the grid's layout: global size %" PetscInt_FMT " (need Ny*Nx = %" PetscInt_FMT "), distributed by whole rows like the solver's fields", what, N, grid->Nx * grid->Ny);
-  PetscCheck(ok[1], grid->comm, PETSC_ERR_FP, "%s holds NaN or Inf values", what);
+  PetscCheck(ok[1], grid->comm, PETSC_ERR_ARG_WRONG, "%s holds NaN or Inf values", what);
   PetscFunctionReturn(0);
 }
 

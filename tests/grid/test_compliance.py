@@ -122,7 +122,7 @@ def test_single_precision_where_the_grid_is_not_the_transform(comm):
     x = K.createVecRight()
     adhbem.set_local_rows(x, K, np.random.default_rng(3).standard_normal((6, 8)))
     if comm.getSize() > 1:
-        with pytest.raises(PETSc.Error):
+        with pytest.raises(ValueError):
             _adhbem.compliance_mult_on_set(K, x, True)
         assert adhbem.compliance_info(K)["single_mult_count"] == 0
     else:
@@ -159,7 +159,7 @@ def test_one_rank_plan_layouts(comm, layout):
     opts["adh_fftw_layout"] = layout
     try:
         if comm.getSize() > 1 and layout == "serial":
-            with pytest.raises(PETSc.Error) as err:
+            with pytest.raises(ValueError) as err:
                 adhbem.compliance((6, 8), comm=comm)
             assert "-adh_fftw_layout" in str(err.value)
             return
@@ -380,13 +380,13 @@ def test_ksp_cg_jacobi(comm):
     (dict(n=4, E_star=float("inf")), "-adh_E_star"),
 ])
 def test_bad_input_names_option(kwargs, option):
-    with pytest.raises((PETSc.Error, ValueError)) as err:
+    with pytest.raises(ValueError) as err:
         adhbem.compliance(comm=PETSc.COMM_SELF, **kwargs)
     assert option in str(err.value)
 
 
 def test_bad_boundary():
-    with pytest.raises((PETSc.Error, ValueError)) as err:
+    with pytest.raises(ValueError) as err:
         adhbem.compliance(4, boundary="clamped", comm=PETSc.COMM_SELF)
     assert "boundary" in str(err.value)
 
@@ -400,7 +400,7 @@ def test_more_ranks_than_rows(comm):
     message = ""
     try:
         adhbem.compliance((4, size - 1), comm=comm)
-    except PETSc.Error as e:
+    except ValueError as e:
         message = str(e)
     raised = mpi(comm).allgather(("-adh_n" in message, bool(message)))
     assert all(r[1] for r in raised)  # every rank raised

@@ -79,3 +79,16 @@ def test_one_blas_thread_per_rank(user_threads):
         assert "as the environment sets" in said[0]
     else:
         assert "set to 1 per rank" in said[0]
+
+
+def test_run_exec_runs_where_the_user_stands(tmp_path):
+    """./run exec takes -options_file and -adh_output relative to the caller's folder."""
+    serial_only()
+    if os.environ.get("ADHBEM_BUILD") and os.path.abspath(os.environ["ADHBEM_BUILD"]) != os.path.abspath(BUILD):
+        pytest.skip("ADHBEM_BUILD names another build")
+    (tmp_path / "job.opts").write_text("-adh_n 16\n-adh_path 0.01,0\n-adh_steps 1\n")
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    r = subprocess.run([os.path.join(root, "run"), "exec", "-options_file", "job.opts", "-adh_output", "out/r.h5"],
+                       cwd=tmp_path, capture_output=True, text=True, env=dict(os.environ, NP="1"), timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert (tmp_path / "out" / "r.h5").is_file() and (tmp_path / "out" / "r.csv").is_file()

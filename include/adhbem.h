@@ -276,6 +276,8 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetContactSet(AdhSolver, IS *);
    uniform dgamma: asking for them (non-NULL) makes them, current for this state. */
 PETSC_EXTERN PetscErrorCode AdhSolverGetFields(AdhSolver, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriticalStress(AdhSolver, PetscReal *);
+/* The boundary mode: free (an isolated contact) or periodic (a periodic cell). */
+PETSC_EXTERN PetscErrorCode AdhSolverGetBoundary(AdhSolver, AdhBoundary *);
 /* The current state: indentation, force, area, points in contact, and the last step's counts
    (set updates, KSP iterations, compliance applications). */
 PETSC_EXTERN PetscErrorCode AdhSolverGetState(AdhSolver, PetscReal *d, PetscReal *F, PetscReal *A, PetscInt *points, PetscInt *outer, PetscInt *ksp, PetscInt *mults);

@@ -504,6 +504,7 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   Mat         K;
   IS          is;
   AdhGrid     grid;
+  AdhBoundary boundary;
   const char *name = "";
   if (!PyArg_ParseTuple(args, "O|s", &cap, &name)) return NULL;
   s = solver_get(cap);
@@ -512,7 +513,8 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   PyPetscCall(AdhSolverGetCompliance(s, &K));
   PyPetscCall(AdhSolverGetContactSet(s, &is));
   PyPetscCall(AdhSolverGetGrid(s, &grid));
-  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", Sigma ? PyPetscVec_New(Sigma) : (Py_INCREF(Py_None), Py_None), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly);
+  PyPetscCall(AdhSolverGetBoundary(s, &boundary));
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d,s:s}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", Sigma ? PyPetscVec_New(Sigma) : (Py_INCREF(Py_None), Py_None), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly, "boundary", AdhBoundaries[boundary]);
 }
 
 static PyObject *py_solver_sigma(PyObject *self, PyObject *args)

@@ -31,8 +31,9 @@ class Results:
     critical_stress: the (Ny, Nx) arrays written once."""
 
     FIELDS = ("pressure", "displacement", "gap", "contact")
+    # integers in the file; earlier files and the CSV journal hold them as floats
     COUNTS = ("contact_points", "outer_iterations", "ksp_iterations", "compliance_applications", "fft_pairs",
-              "patches", "pulled_off")
+              "patches", "pulled_off", "smallest_tensile_patch")
 
     def __init__(self, path):
         import h5py
@@ -47,6 +48,8 @@ class Results:
             self._file = h5py.File(self.path, "r")
             self.params = {k: _plain(v) for k, v in self._file.attrs.items()}
             self.curve = {k: self._file["curve"][k][()] for k in self._file["curve"]}
+            if "path" in self.curve:  # earlier files: /curve/path, of its own length
+                self.params.setdefault("path", self.curve.pop("path"))
         except (OSError, KeyError) as e:
             if not os.path.exists(journal):
                 raise
@@ -63,11 +66,28 @@ class Results:
         for k in self.COUNTS:
             if k in self.curve:
                 self.curve[k] = self.curve[k].astype(np.int64)
+        if self.params.get("boundary") == "periodic" and "mean_pressure" not in self.curve and "force" in self.curve:
+            # earlier files: the columns a periodic cell's file now has
+            cell = self.params["Lx"] * self.params["Ly"]
+            self.curve["mean_pressure"] = self.curve["force"] / cell
+            self.curve["area_fraction"] = self.curve["area"] / cell
         group = self._file.get("fields") if self._file is not None else None
         self.field_names = [k for k in self.FIELDS if group is not None and k in group]
         self.states = group["state"][()].astype(np.int64) if group is not None and "state" in group else np.zeros(0, np.int64)
         # frames written after the last state the file knows of (a kill between the two) are not its
         self.states = self.states[self.states < len(self.curve.get("d", ()))]
+
+    def to_pandas(self):
+        """The curve as a ``pandas.DataFrame``, a row per recorded state (the index: the state,
+        the curve row that ``field(name, state)`` takes). pandas is needed for this call only."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Results.to_pandas() needs pandas (pip install pandas, or apt install python3-pandas); "
+                              "Results.curve holds the same columns as a dict of NumPy arrays") from None
+        frame = pd.DataFrame(self.curve)
+        frame.index.name = "state"
+        return frame
 
     def field(self, name, state):
         """The field `name` of curve row `state` (negative: from the end), read from the file."""

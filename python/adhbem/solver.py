@@ -407,12 +407,17 @@ class Solver:
         return v
 
     def curve(self):
-        """dict of NumPy arrays, one entry per recorded state: d, force, area, contact_points,
-        outer_iterations, ksp_iterations, seconds, compliance_applications, fft_pairs (compliance
-        and preconditioner), patches, mean_gap, max_tension_ratio, area_tension,
-        area_compression, pulled_off."""
+        """dict of NumPy arrays, one entry per recorded state: the columns of the results file's
+        ``/curve`` (see ``docs/output.md``), counts as int64; on a periodic cell also
+        ``mean_pressure`` (force over the cell's area) and ``area_fraction`` (area over it)."""
         import numpy as np
-        return {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
+        curve = {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
+        objects = _adhbem.solver_objects(self._s)
+        if objects["boundary"] == "periodic":
+            cell = objects["Lx"] * objects["Ly"]
+            curve["mean_pressure"] = curve["force"] / cell
+            curve["area_fraction"] = curve["area"] / cell
+        return curve
 
     def write(self, file):
         """Writes the curve (and, with option fields, the current fields, as those of the last row)

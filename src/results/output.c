@@ -145,24 +145,74 @@ static PetscErrorCode WriteBlock(hid_t dset, hid_t type, int rank, const hsize_t
   PetscFunctionReturn(0);
 }
 
-/* Rows [from, from + count) of the 1-D float64 dataset `name` of group (created extendible when
-   missing; its extent becomes from + count, which may also shorten it), written by rank 0 from
-   values. Collective. */
-static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], PetscInt from, PetscInt count, const PetscReal *values)
+/* A root attribute of text as a variable-length UTF-8 string: h5py reads it as str (PETSc's
+   attributes are fixed-length ASCII, which h5py gives as bytes). Replaces one of that name. */
+static PetscErrorCode WriteStringAttribute(PetscViewer v, const char name[], const char value[])
 {
-  hid_t       dset;
+  hid_t file_id, type, space, attr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
+  if (H5Aexists_by_name(file_id, "/", name, H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", name, H5P_DEFAULT));
+  ADH_H5(type = H5Tcopy(H5T_C_S1));
+  ADH_H5(H5Tset_size(type, H5T_VARIABLE));
+  ADH_H5(H5Tset_cset(type, H5T_CSET_UTF8));
+  ADH_H5(space = H5Screate(H5S_SCALAR));
+  ADH_H5(attr = H5Acreate_by_name(file_id, "/", name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ADH_H5(H5Awrite(attr, type, &value));
+  ADH_H5(H5Aclose(attr));
+  ADH_H5(H5Sclose(space));
+  ADH_H5(H5Tclose(type));
+  PetscFunctionReturn(0);
+}
+
+/* A root attribute holding n reals (the path). Replaces one of that name. */
+static PetscErrorCode WriteRealArrayAttribute(PetscViewer v, const char name[], PetscInt n, const PetscReal *values)
+{
+  hid_t   file_id, space, attr;
+  hsize_t dims[1] = {(hsize_t)n};
+  double *buf;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
+  if (H5Aexists_by_name(file_id, "/", name, H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", name, H5P_DEFAULT));
+  PetscCall(PetscMalloc1(n + 1, &buf));
+  for (PetscInt k = 0; k < n; k++) buf[k] = (double)values[k];
+  ADH_H5(space = H5Screate_simple(1, dims, NULL));
+  ADH_H5(attr = H5Acreate_by_name(file_id, "/", name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ADH_H5(H5Awrite(attr, H5T_NATIVE_DOUBLE, buf));
+  ADH_H5(H5Aclose(attr));
+  ADH_H5(H5Sclose(space));
+  PetscCall(PetscFree(buf));
+  PetscFunctionReturn(0);
+}
+
+/* Rows [from, from + count) of the 1-D dataset `name` of group, float64 or (integer) int64
+   (created extendible when missing; its extent becomes from + count, which may also shorten it),
+   written by rank 0 from values. Collective. */
+static PetscErrorCode AppendRows(AdhSolver s, hid_t group, const char name[], PetscBool integer, PetscInt from, PetscInt count, const PetscReal *values)
+{
+  hid_t       dset, type = integer ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE;
   hsize_t     dims[1] = {(hsize_t)(from + count)}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
   PetscMPIInt rank;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(OpenExtendible(group, name, H5T_NATIVE_DOUBLE, 1, dims, chunk, &dset));
+  PetscCall(OpenExtendible(group, name, type, 1, dims, chunk, &dset));
   if (!rank && count > 0) {
-    double *buf;
-    PetscCall(PetscMalloc1(count, &buf));
-    for (PetscInt k = 0; k < count; k++) buf[k] = (double)values[k];
-    PetscCall(WriteBlock(dset, H5T_NATIVE_DOUBLE, 1, offset, n, buf));
-    PetscCall(PetscFree(buf));
+    if (integer) {
+      long long *buf;
+      PetscCall(PetscMalloc1(count, &buf));
+      for (PetscInt k = 0; k < count; k++) buf[k] = (long long)values[k];
+      PetscCall(WriteBlock(dset, type, 1, offset, n, buf));
+      PetscCall(PetscFree(buf));
+    } else {
+      double *buf;
+      PetscCall(PetscMalloc1(count, &buf));
+      for (PetscInt k = 0; k < count; k++) buf[k] = (double)values[k];
+      PetscCall(WriteBlock(dset, type, 1, offset, n, buf));
+      PetscCall(PetscFree(buf));
+    }
   }
   ADH_H5(H5Dclose(dset));
   PetscFunctionReturn(0);
@@ -240,7 +290,7 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
     const PetscReal row = (PetscReal)state;
     hid_t           file_id, group;
     PetscCall(PetscViewerHDF5OpenGroup(viewer, NULL, &file_id, &group));
-    PetscCall(AppendRows(s, group, "state", frame, 1, &row));
+    PetscCall(AppendRows(s, group, "state", PETSC_TRUE, frame, 1, &row));
     ADH_H5(H5Gclose(group));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
@@ -351,12 +401,12 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "E_star", PETSC_REAL, &s->Estar));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma", PETSC_REAL, &s->gamma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field", PETSC_BOOL, s->gamma_field ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
-  if (s->gamma_field && s->gamma_file[0]) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field_file", PETSC_STRING, s->gamma_file));
+  if (s->gamma_field && s->gamma_file[0]) PetscCall(WriteStringAttribute(v, "gamma_field_file", s->gamma_file));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Sigma", PETSC_REAL, &s->Sigma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress_fixed", PETSC_BOOL, s->sigma_fixed > 0 ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));
   if (s->sigma_fixed > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress", PETSC_REAL, &s->sigma_fixed));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "attach", PETSC_STRING, AdhAttaches[s->attach]));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "predictor", PETSC_STRING, s->predictor_type));
+  PetscCall(WriteStringAttribute(v, "attach", AdhAttaches[s->attach]));
+  PetscCall(WriteStringAttribute(v, "predictor", s->predictor_type));
   if (s->force_control) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulloff_rtol", PETSC_REAL, &s->pulloff_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hy", PETSC_REAL, &g->hy));
@@ -365,11 +415,11 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Nx", PETSC_INT, &g->Nx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Ny", PETSC_INT, &g->Ny));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "nranks", PETSC_INT, &nranks));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "boundary", PETSC_STRING, AdhBoundaries[s->boundary]));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "start", PETSC_STRING, AdhStarts[s->start]));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "control", PETSC_STRING, s->control_type));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion", PETSC_STRING, s->criterion_type));
+  PetscCall(WriteStringAttribute(v, "boundary", AdhBoundaries[s->boundary]));
+  PetscCall(WriteStringAttribute(v, "indenter", AdhIndenterTypes[s->indenter.type]));
+  PetscCall(WriteStringAttribute(v, "start", AdhStarts[s->start]));
+  PetscCall(WriteStringAttribute(v, "control", s->control_type));
+  PetscCall(WriteStringAttribute(v, "criterion", s->criterion_type));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius", PETSC_REAL, &s->criterion_radius));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius_max", PETSC_REAL, &s->criterion_radius_max));
   if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
@@ -382,17 +432,17 @@ static PetscErrorCode WriteAttributes(AdhSolver s, PetscViewer v)
     if (s->local_ksp) PetscCall(KSPGetTolerances(s->local_ksp, &local_rtol, NULL, NULL, NULL));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_local_rtol", PETSC_REAL, &local_rtol));
   }
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_type", PETSC_STRING, ksptype));
+  PetscCall(WriteStringAttribute(v, "ksp_type", ksptype));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ksp_rtol", PETSC_REAL, &rtol));
   switch (s->indenter.type) {
   case ADH_INDENTER_SPHERE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "radius", PETSC_REAL, &s->indenter.radius)); break;
   case ADH_INDENTER_PUNCH: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "punch_radius", PETSC_REAL, &s->indenter.punch_radius)); break;
   case ADH_INDENTER_CONE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cone_slope", PETSC_REAL, &s->indenter.cone_slope)); break;
-  case ADH_INDENTER_FILE: PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography", PETSC_STRING, s->indenter.topography)); break;
+  case ADH_INDENTER_FILE: PetscCall(WriteStringAttribute(v, "topography", s->indenter.topography)); break;
   case ADH_INDENTER_ROUGH: break; /* written when the file was opened */
   case ADH_INDENTER_ARRAY: break;
   }
-  if (s->indenter.type == ADH_INDENTER_FILE || s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "topography_kind", PETSC_STRING, AdhTopographyKinds[s->indenter.kind]));
+  if (s->indenter.type == ADH_INDENTER_FILE || s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(WriteStringAttribute(v, "topography_kind", AdhTopographyKinds[s->indenter.kind]));
   PetscFunctionReturn(0);
 }
 
@@ -421,6 +471,33 @@ static PetscErrorCode WriteTextFile(AdhSolver s, const char name[], void (*body)
   PetscFunctionReturn(0);
 }
 
+/* The columns of the results file's curve and of its CSV: the curve's own (AdhCurveColumns), and
+   on a periodic cell the two a rough-contact study reads, mean pressure F / (Lx Ly) and area
+   fraction A / (Lx Ly). */
+static const char *const DerivedColumns[] = {"mean_pressure", "area_fraction"};
+
+static PetscInt NumColumns(AdhSolver s)
+{
+  return AdhCurveNumColumns + (s->boundary == ADH_BOUNDARY_PERIODIC ? 2 : 0);
+}
+
+static const char *ColumnName(PetscInt j)
+{
+  return j < AdhCurveNumColumns ? AdhCurveColumns[j].name : DerivedColumns[j - AdhCurveNumColumns];
+}
+
+static PetscBool ColumnIsCount(PetscInt j)
+{
+  return j < AdhCurveNumColumns ? AdhCurveColumns[j].integer : PETSC_FALSE;
+}
+
+static PetscReal ColumnValue(AdhSolver s, const AdhState *st, PetscInt j)
+{
+  const PetscReal cell = s->grid->Lx * s->grid->Ly;
+  if (j < AdhCurveNumColumns) return AdhStateValue(st, j);
+  return (j == AdhCurveNumColumns ? st->force : st->area) / cell;
+}
+
 /* The journal FILE.csv.part: the curve as CSV (a step column, then one column per curve column),
    its header written when the results file is opened and a row appended and synced by rank 0
    after each recorded state; renamed FILE.csv when the run ends. */
@@ -447,15 +524,15 @@ static PetscErrorCode JournalWrite(AdhSolver s, PetscInt from, PetscInt to)
     FILE *fp = s->journal;
     if (from < 0) {
       fprintf(fp, "step");
-      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) fprintf(fp, ",%s", AdhCurveColumns[j].name);
+      for (PetscInt j = 0; j < NumColumns(s); j++) fprintf(fp, ",%s", ColumnName(j));
       fprintf(fp, "\n");
       from = 0;
     }
     for (PetscInt k = from; k < to; k++) {
       fprintf(fp, "%" PetscInt_FMT, k);
-      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-        if (AdhCurveColumns[j].integer) fprintf(fp, ",%.0f", (double)AdhStateValue(&s->curve.state[k], j));
-        else fprintf(fp, ",%.17g", (double)AdhStateValue(&s->curve.state[k], j));
+      for (PetscInt j = 0; j < NumColumns(s); j++) {
+        if (ColumnIsCount(j)) fprintf(fp, ",%.0f", (double)ColumnValue(s, &s->curve.state[k], j));
+        else fprintf(fp, ",%.17g", (double)ColumnValue(s, &s->curve.state[k], j));
       }
       fprintf(fp, "\n");
     }
@@ -577,14 +654,17 @@ static PetscErrorCode Begin(AdhSolver s, PetscViewer v, const char file[])
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_FALSE}));
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(PetscViewerHDF5OpenGroup(v, NULL, &file_id, &group));
-  for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
+  for (PetscInt j = 0; j < NumColumns(s); j++) {
     /* a restart's file: its rows are written again from the checkpoint's curve */
-    if (H5Lexists(group, AdhCurveColumns[j].name, H5P_DEFAULT) > 0) ADH_H5(H5Ldelete(group, AdhCurveColumns[j].name, H5P_DEFAULT));
-    PetscCall(AppendRows(s, group, AdhCurveColumns[j].name, 0, 0, NULL));
+    if (H5Lexists(group, ColumnName(j), H5P_DEFAULT) > 0) ADH_H5(H5Ldelete(group, ColumnName(j), H5P_DEFAULT));
+    PetscCall(AppendRows(s, group, ColumnName(j), ColumnIsCount(j), 0, 0, NULL));
   }
+  /* earlier files held the path as /curve/path, a dataset of its own length among the columns:
+     a restart's earlier file loses it, the root attribute replaces it */
+  if (H5Lexists(group, "path", H5P_DEFAULT) > 0) ADH_H5(H5Ldelete(group, "path", H5P_DEFAULT));
   ADH_H5(H5Gclose(group));
-  PetscCall(WriteRealArray(s, v, "path", s->npath, s->path));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(WriteRealArrayAttribute(v, "path", s->npath, s->path));
   ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
   s->rows_written = 0;
   PetscCall(JournalOpen(s, file));
@@ -605,9 +685,9 @@ PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
     PetscCall(PetscMalloc1(n - from, &column));
     PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
     PetscCall(PetscViewerHDF5OpenGroup(v, NULL, &file_id, &group));
-    for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
-      for (k = from; k < n; k++) column[k - from] = AdhStateValue(&s->curve.state[k], j);
-      PetscCall(AppendRows(s, group, AdhCurveColumns[j].name, from, n - from, column));
+    for (PetscInt j = 0; j < NumColumns(s); j++) {
+      for (k = from; k < n; k++) column[k - from] = ColumnValue(s, &s->curve.state[k], j);
+      PetscCall(AppendRows(s, group, ColumnName(j), ColumnIsCount(j), from, n - from, column));
     }
     ADH_H5(H5Gclose(group));
     PetscCall(PetscViewerHDF5PopGroup(v));
@@ -700,7 +780,7 @@ static PetscErrorCode TakeOver(AdhSolver s, PetscViewer v, const char file[], Pe
         ADH_H5(H5Sclose(fspace));
         ADH_H5(H5Dclose(fset));
       }
-      PetscCall(AppendRows(s, group, "state", 0, frames, states));
+      PetscCall(AppendRows(s, group, "state", PETSC_TRUE, 0, frames, states));
     }
     ADH_H5(H5Gclose(group));
     PetscCall(PetscViewerHDF5PopGroup(v));

@@ -273,4 +273,4 @@ def test_the_default_attach_rule_follows_the_criterion(tmp_path, args, attach):
     assert f"attach rule {attach}" in r.stdout
     import h5py
     with h5py.File(out, "r") as f:
-        assert f.attrs["attach"].decode() == attach
+        assert f.attrs["attach"] == attach

@@ -103,6 +103,13 @@ PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
+{
+  PetscFunctionBegin;
+  *boundary = s->boundary;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
 {
   PetscFunctionBegin;

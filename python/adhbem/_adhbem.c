@@ -1,6 +1,9 @@
 /* The C half of the Python layer: turns libadhbem objects into real petsc4py objects.
    PETSc errors become Python's exceptions (SetPythonError). */
 #define PY_SSIZE_T_CLEAN
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <Python.h>
 #include <petsc4py/petsc4py.h>
@@ -277,6 +280,69 @@ static PyObject *py_love(PyObject *self, PyObject *args)
   double x, y, hx, hy, Estar;
   if (!PyArg_ParseTuple(args, "ddddd", &x, &y, &hx, &hy, &Estar)) return NULL;
   return PyFloat_FromDouble(AdhLoveCoefficient(x, y, hx, hy, Estar));
+}
+
+/* The solver's option table as -help prints it: a fresh solver on this process reads its options
+   with -help set, PETSc's help printer writing into a buffer. The Python layer builds Solver's
+   keywords and their documentation from it, so they cannot drift from the C options. */
+static char  *HelpText;
+static size_t HelpLength, HelpCapacity;
+
+static PetscErrorCode (*PrintTo)(FILE *, const char[], va_list);
+
+/* PETSc prints help through PetscHelpPrintf and, for lists of types, straight to stdout: both
+   pass through PetscVFPrintf, which this replaces for the call. */
+static PetscErrorCode CaptureHelp(FILE *fd, const char format[], va_list given)
+{
+  char    line[16384]; /* PETSc's formatting (a real always shows a '.'), as -help prints it */
+  size_t  n = 0;
+  va_list args;
+  if (fd != stdout && fd != PETSC_STDOUT) return PrintTo(fd, format, given);
+  va_copy(args, given);
+  (void)PetscVSNPrintf(line, sizeof(line), format, &n, args);
+  va_end(args);
+  n = strlen(line);
+  if (HelpLength + n + 1 > HelpCapacity) {
+    size_t capacity = 2 * (HelpLength + n + 1);
+    char  *grown    = (char *)realloc(HelpText, capacity);
+    if (!grown) return PETSC_ERR_MEM;
+    HelpText     = grown;
+    HelpCapacity = capacity;
+  }
+  memcpy(HelpText + HelpLength, line, n + 1);
+  HelpLength += n;
+  return 0;
+}
+
+static PyObject *py_option_help(PyObject *self, PyObject *args)
+{
+  PetscBool      had_help = PETSC_FALSE;
+  AdhSolver      s        = NULL;
+  PetscErrorCode ierr;
+  PyObject      *text;
+  const char    *prefix;
+
+  if (!PyArg_ParseTuple(args, "s", &prefix)) return NULL;
+  HelpLength = 0;
+  if (HelpText) HelpText[0] = 0;
+  CatchErrorsBegin();
+  ierr = PetscOptionsHasName(NULL, NULL, "-help", &had_help);
+  if (!ierr && !had_help) ierr = PetscOptionsSetValue(NULL, "-help", NULL);
+  if (!ierr) {
+    PrintTo         = PetscVFPrintf;
+    PetscVFPrintf   = CaptureHelp;
+    ierr            = AdhSolverCreate(PETSC_COMM_SELF, &s);
+    if (!ierr) ierr = AdhSolverSetOptionsPrefix(s, prefix);
+    if (!ierr) ierr = AdhSolverSetFromOptions(s);
+    if (!ierr) ierr = AdhSolverSetUp(s); /* the compliance's options (-adh_fftw_*) are read here */
+    PetscVFPrintf   = PrintTo;
+    (void)AdhSolverDestroy(&s);
+    if (!had_help) (void)PetscOptionsClearValue(NULL, "-help");
+  }
+  CatchErrorsEnd();
+  PyPetscRaise(ierr);
+  text = PyUnicode_FromString(HelpText ? HelpText : "");
+  return text;
 }
 
 static PyObject *py_option_names(PyObject *self, PyObject *args)
@@ -613,6 +679,7 @@ static PyMethodDef methods[] = {
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
+  {"option_help", py_option_help, METH_VARARGS, "option_help(prefix) -> the -help text of a solver's options under prefix"},
   {"option_names", py_option_names, METH_NOARGS, "option_names() -> adhbem's own option names (adh_gamma, ...)"},
   {"compliance_info", py_compliance_info, METH_VARARGS, "compliance_info(K) -> dict(lambda_min, row_norm_bound, mult_count, Nx, Ny)"},
   {"love_coefficient", py_love, METH_VARARGS, "love_coefficient(x, y, hx, hy, Estar) -> displacement per unit pressure"},

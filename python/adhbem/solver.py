@@ -57,6 +57,19 @@ def _is_sequence(value):
     return np.ndim(value) > 0
 
 
+def _ndim(value):
+    import numpy as np
+    try:
+        return np.ndim(value)
+    except Exception:  # a ragged list: the check of the array says what is wrong
+        return -1
+
+
+def _shape(value):
+    import numpy as np
+    return np.shape(value)
+
+
 def _pair(value, name):
     if _is_sequence(value):
         value = list(value)
@@ -83,12 +96,14 @@ _surface_count = 0
 
 
 def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavelength=None,
-                  rms_height=None, rms_slope=None, seed=1, comm=None):
+                  rms_height=None, rms_slope=None, seed=1, comm=None, as_array=False):
     """A periodic, self-affine, Gaussian random surface on an n = N or (Nx, Ny) grid over
     size = L or (Lx, Ly): returns (z, stats).
 
-    z is a ``PETSc.Vec`` of heights (mean zero) on the grid's row layout (a block of Nx values per
-    row), so ``gather(z, z)`` and ``local_rows(z, z)`` work. The power spectrum is flat below
+    With ``as_array=True`` z is a NumPy array of heights (mean zero) of shape (Ny, Nx), the whole
+    surface on every rank, ready for ``Solver(topography=z, boundary="periodic")``. Otherwise z is
+    a ``PETSc.Vec`` on the grid's row layout (a block of Nx values per row), so ``gather(z, z)``
+    and ``local_rows(z, z)`` work. The power spectrum is flat below
     2 pi/rolloff_wavelength (default: the cell size), ~ q^(-2(1+hurst)) up to
     2 pi/cutoff_wavelength (default: 4 grid spacings) and zero above. Give rms_height or
     rms_slope (default rms_slope 0.1, defined spectrally); it is realised exactly. The same seed
@@ -115,7 +130,8 @@ def rough_surface(n, size=1.0, hurst=0.8, rolloff_wavelength=None, cutoff_wavele
             if value is not None:
                 names.append(f"{prefix}adh_{key}")
                 opts[names[-1]] = _option_value(value)
-        return _adhbem.rough_surface(comm, int(Nx), int(Ny), float(Lx), float(Ly), prefix)
+        z, stats = _adhbem.rough_surface(comm, int(Nx), int(Ny), float(Lx), float(Ly), prefix)
+        return (gather(z, z), stats) if as_array else (z, stats)
     finally:
         for name in names:
             opts.delValue(name)
@@ -204,27 +220,45 @@ def _option_value(value):
 class Solver:
     """The adhesive contact solver, configured by the same options as the executable.
 
-    Keyword arguments are the ``-adh_`` options without that prefix, e.g.
-    ``Solver(n=128, size=1.0, E_star=1.0, gamma=2e-3, radius=1.0, path=[0.06, -0.03], steps=45)``;
-    KSP options go the same way (``ksp_rtol=1e-12``). They are stored under a prefix of this
-    solver's own, so two solvers do not see each other's options.
+    Every keyword is an ``-adh_`` option of the executable without that prefix; the list below is
+    made from the library's own option table (what ``adhbem -help`` prints), with its defaults.
+    KSP options go the same way (``ksp_rtol=1e-12``). The options are stored under a prefix of
+    this solver's own, so two solvers do not see each other's.
 
-    A topography or a work-of-adhesion field is a file name (the options ``topography``,
-    ``gamma_field``), or a NumPy array of shape (Ny, Nx) (every rank passes the whole array), or
-    a Vec on the grid: ``Solver(n=(Nx, Ny), topography=z, topography_kind="height",
-    gamma_field=g)``. A height map z gives the profile h = max(z) - z (the highest peak touches
-    at d = 0); ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the
-    indenter "array"; the results files it writes hold it as ``/topography``.
+    Examples
+    --------
+    >>> s = adhbem.Solver(n=128, gamma=2e-3, radius=1.0, path=[0.06, -0.03], steps=45)
+    >>> curve = s.solve_path()                      # dict of NumPy arrays, a row per state
+    >>> p = s.pressure_array()                      # the last state's pressure, (Ny, Nx)
 
-    The fields (``pressure``, ``displacement``, ``gap``, ``contact_set``: petsc4py objects) are
-    those of the current state: read them inside ``for state in s.iterate_path():`` or a
-    ``monitor(fn)`` to have every state's; after ``solve_path()`` they are the last state's (at
-    pull-off: nothing in contact). ``curve()`` gives the recorded states as NumPy arrays, from
+    A rough surface of your own, as a NumPy height map on a periodic cell:
+
+    >>> s = adhbem.Solver(n=(Nx, Ny), size=(Lx, Ly), boundary="periodic", gamma=1e-3,
+    ...                   topography=z, path=[0.0, 0.02, -0.01], steps=40)
+
+    Notes
+    -----
+    A height map z gives the profile h = max(z) - z (the highest peak touches at d = 0);
+    ``topography_kind="gap"`` takes h as it is. An array or Vec topography makes the indenter
+    ``"array"``; the results files it writes hold it as ``/topography``. A topography on the
+    default free boundary is an isolated body of the grid's size and draws a warning: give
+    ``boundary="periodic"`` for a periodic cell, ``boundary="free"`` to keep it.
+
+    The fields are those of the current state, as NumPy arrays (``pressure_array()``,
+    ``gap_array()``, ``contact_array()``, ...) or as petsc4py objects (``pressure``, ``gap``,
+    ``contact_set``, ...): read them inside ``for state in s.iterate_path():`` or a
+    ``monitor(fn)`` to have every state's; after ``solve_path()`` they are the last state's (after
+    a pull-off: nothing in contact). ``curve()`` gives the recorded states, from
     ``solve_path()``, ``iterate_path()`` or ``start(d)`` and ``step(d)``; ``pull_off_force`` the
-    largest tension carried.
+    largest tension the contact carried; ``resolution`` how well the grid resolves the adhesion.
+
+    Errors are Python's exceptions: ``ValueError`` for a bad value (the message names the
+    option), ``FileNotFoundError``, ``MemoryError`` (a grid larger than the node), ``TypeError``
+    for an unknown keyword, ``KeyboardInterrupt`` when SIGINT or SIGTERM stops a path (its
+    results so far are written).
     """
 
-    def __init__(self, comm=None, topography=None, topography_kind=None, gamma_field=None, **options):
+    def __init__(self, comm=None, *, topography=None, topography_kind=None, gamma_field=None, **options):
         self._keys = []
         self._topography = None  # an array or Vec topography, written to results files
         # File names are options read at set-up; arrays and Vecs are handed over after it.
@@ -235,6 +269,10 @@ class Solver:
         if isinstance(topography, (str, os.PathLike)):
             options["topography"] = os.fspath(topography)
             topography = None
+        elif ("n" not in options and topography is not None and not isinstance(topography, PETSc.Vec)
+              and not is_surface_topography(topography) and _ndim(topography) == 2):
+            shape = _shape(topography)
+            options["n"] = (shape[1], shape[0])  # an (Ny, Nx) array gives the grid
         elif is_surface_topography(topography):
             topography = self._take_surface_topography(topography, options)
         if topography is not None:
@@ -407,9 +445,26 @@ class Solver:
         return v
 
     def curve(self):
-        """dict of NumPy arrays, one entry per recorded state: the columns of the results file's
-        ``/curve`` (see ``docs/output.md``), counts as int64; on a periodic cell also
-        ``mean_pressure`` (force over the cell's area) and ``area_fraction`` (area over it)."""
+        """The recorded states: a dict of NumPy arrays, an entry per state, the columns of the
+        results file's ``/curve`` (counts int64):
+
+        - ``d``, ``force``, ``area``, ``contact_points``: the state (indentation, or the force
+          target's d under force control; force F = sum p hx hy; contact area);
+        - ``outer_iterations``, ``ksp_iterations``, ``compliance_applications``, ``fft_pairs``,
+          ``seconds``: its cost (set updates, CG iterations, compliance applications,
+          forward+backward FFT pairs, wall time);
+        - ``patches``: connected clusters of the contact set; ``mean_gap``: the gap's mean;
+        - ``max_tension_ratio``: the largest tension over Sigma; ``detach_ratio``: the
+          criterion's largest load over its limit (1: a point is about to let go);
+        - ``area_tension``, ``area_compression``: contact area carrying p < 0 and p > 0;
+        - ``pulled_off``: 1 on the state where the contact was lost (the leg ends there);
+        - ``smallest_tensile_patch``, ``small_patch_tension``: the smallest patch with a net
+          tension, and the share of the tension carried by patches under 314 points;
+        - on a periodic cell, ``mean_pressure`` and ``area_fraction``: force and area over the
+          cell's area Lx Ly.
+
+        ``adhbem.load(FILE).to_pandas()`` gives the same columns of a results file as a DataFrame.
+        """
         import numpy as np
         curve = {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
         objects = _adhbem.solver_objects(self._s)
@@ -468,6 +523,65 @@ class Solver:
             set_local_rows(v, self.compliance, array)
         return v
 
+    # NumPy views of the fields. Grids are distributed by rows: local=False gathers the whole
+    # (Ny, Nx) field on every rank (collective: every rank calls it), local=True gives this
+    # rank's rows j0:j1 (``rows``) as a (j1 - j0, Nx) array. Copies: the solver's next step does
+    # not change them.
+    _ARRAYS = ("pressure", "displacement", "gap", "profile", "critical_stress", "contact")
+
+    def array(self, name, local=False):
+        """The field ``name`` of the current state as a NumPy array (a copy).
+
+        Parameters
+        ----------
+        name : {'pressure', 'displacement', 'gap', 'profile', 'critical_stress', 'contact'}
+            pressure p (tension < 0), surface displacement u = K p, gap g = h - d + u, the
+            indenter's profile h, the critical stress Sigma(x, y), or the contact set as a bool
+            mask.
+        local : bool, default False
+            False: the whole field, shape (Ny, Nx), on every rank (collective). True: this
+            rank's rows ``rows[0]:rows[1]``, shape (rows[1] - rows[0], Nx).
+
+        Returns
+        -------
+        numpy.ndarray
+            float64, or bool for ``"contact"``; index ``[j, i]`` is the element at
+            x_i = (i - Nx/2) hx, y_j = (j - Ny/2) hy.
+        """
+        import numpy as np
+        if name not in self._ARRAYS:
+            raise ValueError(f"array: no field {name!r} (one of {', '.join(self._ARRAYS)})")
+        vec = self.contact_mask() if name == "contact" else self._obj(name)
+        K = self.compliance
+        a = local_rows(vec, K).copy() if local else gather(vec, K)
+        return a.astype(bool) if name == "contact" else a
+
+    def pressure_array(self, local=False):
+        """The pressure, (Ny, Nx) on every rank or this rank's rows (see ``array``)."""
+        return self.array("pressure", local)
+
+    def displacement_array(self, local=False):
+        """The surface displacement u = K p (see ``array``)."""
+        return self.array("displacement", local)
+
+    def gap_array(self, local=False):
+        """The gap g = h - d + u (see ``array``)."""
+        return self.array("gap", local)
+
+    def profile_array(self, local=False):
+        """The indenter's profile h, the gap at d = 0 before deformation (see ``array``); for a
+        height map z given as topography, h = max(z) - z."""
+        return self.array("profile", local)
+
+    def contact_array(self, local=False):
+        """The contact set as a bool mask (see ``array``)."""
+        return self.array("contact", local)
+
+    @property
+    def rows(self):
+        """(j0, j1): the grid rows this rank owns (``array(..., local=True)`` gives them)."""
+        return row_range(self.compliance)
+
     @property
     def critical_stress(self):
         """Sigma of the scalar work of adhesion on this grid."""
@@ -484,3 +598,66 @@ class Solver:
     compliance = property(lambda self: self._obj("compliance"), doc="the compliance Mat K")
     contact_set = property(lambda self: self._obj("contact_set"), doc="the contact set IS")
     spacing = property(lambda self: (self._obj("hx"), self._obj("hy")), doc="(hx, hy)")
+
+
+# Solver's keywords, their defaults and their documentation, from the library's option table.
+_PYTHON_ONLY = {
+    "comm": ("mpi4py.MPI.Comm or petsc4py.PETSc.Comm, optional",
+             "The ranks the solver runs on (default: ``PETSc.COMM_WORLD``)."),
+    "topography": ("str or os.PathLike or numpy.ndarray or petsc4py.PETSc.Vec or SurfaceTopography, optional",
+                   "The indenter's profile: a file (.npy of shape (Ny, Nx), or HDF5), a NumPy array of shape "
+                   "(Ny, Nx) (every rank passes the whole array), a Vec on the grid, or a SurfaceTopography "
+                   "topography (its grid, sizes and periodicity become ``n``, ``size`` and ``boundary``)."),
+    "topography_kind": ("{'height', 'gap'}, default 'height'",
+                        "What ``topography`` holds: heights z (profile h = max(z) - z) or the gap h itself."),
+    "gamma_field": ("str or os.PathLike or numpy.ndarray or petsc4py.PETSc.Vec, optional",
+                    "The work of adhesion as a field dgamma(x, y), (Ny, Nx): a file, an array or a Vec. It "
+                    "replaces ``gamma`` in the critical stress."),
+}
+_OTHER_GROUPS = ("solver tuning", "compliance")  # numpydoc's "Other Parameters"
+
+
+def _entry(name, kind, text):
+    import textwrap
+    body = textwrap.fill(text, width=88, initial_indent="    ", subsequent_indent="    ")
+    return f"{name} : {kind}\n{body}"
+
+
+def _option_entry(o):
+    from .options import python_text
+    if o.default is None:
+        kind = f"{o.python_type}, optional"
+    elif o.kind == "choice" or o.kind == "str":
+        kind = f"{o.python_type}, default {o.default!r}"
+    else:
+        kind = f"{o.python_type}, default {o.default!r}"
+    return _entry(o.name, kind, f"{python_text(o.text)} (``-adh_{o.name}``)")
+
+
+def _document_solver():
+    """Solver's signature and the Parameters of its docstring, from the option table."""
+    import inspect
+    from .options import solver_options
+    table = [o for o in solver_options() if o.name not in _PYTHON_ONLY]
+    main = [o for o in table if o.group not in _OTHER_GROUPS]
+    other = [o for o in table if o.group in _OTHER_GROUPS]
+    lines = ["Parameters", "----------"]
+    lines += [_entry(k, *v) for k, v in _PYTHON_ONLY.items()]
+    lines += [_option_entry(o) for o in main]
+    lines += ["", "Other Parameters", "----------------"]
+    lines += [_option_entry(o) for o in other]
+    lines += [_entry("**petsc_options", "optional", "PETSc's options of the solver's KSPs, without ``-adh_``: "
+                     "``ksp_type``, ``ksp_rtol``, ``pc_type``, ``local_ksp_rtol``, ... (a misspelled one is "
+                     "refused at set-up).")]
+    doc = inspect.cleandoc(Solver.__doc__)
+    head, _, tail = doc.partition("\nExamples\n--------\n")
+    Solver.__doc__ = head + "\n" + "\n".join(lines) + "\n\nExamples\n--------\n" + tail
+    P = inspect.Parameter
+    params = [P("comm", P.POSITIONAL_OR_KEYWORD, default=None)]
+    params += [P(k, P.KEYWORD_ONLY, default=None) for k in ("topography", "topography_kind", "gamma_field")]
+    params += [P(o.name, P.KEYWORD_ONLY, default=o.default) for o in table]
+    params += [P("petsc_options", P.VAR_KEYWORD)]
+    Solver.__signature__ = inspect.Signature(params)
+
+
+_document_solver()

@@ -1,0 +1,130 @@
+"""The solver's options as a table, read from the C library itself: a solver reads its options
+with ``-help`` set and PETSc's help text is parsed here. ``Solver``'s keywords, its signature and
+its documentation are made from this table, so they list every option the executable has, with
+the same defaults and words, and cannot drift from it.
+
+``python3 -m adhbem.options`` prints the table (Markdown).
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+# -PREFIXadh_NAME[:] <DEFAULT>[:] TEXT [(choose one of) | (one of) CHOICES] (MANUAL PAGE)
+_LINE = re.compile(r"^\s+-\w*?adh_(?P<name>\w+)(?P<boolcolon>:?) <(?P<default>[^>]*)>:? (?P<text>.*) \((?P<man>[^()]*)\)$")
+_CHOICES = re.compile(r"^(?P<text>.*?) \((?:choose )?one of\) (?P<choices>.*)$")
+_FORMERLY = re.compile(r"^now (?P<now>.*?) : formerly .*$")
+_REAL_PAIR = re.compile(r"^(?P<now>\S+) : \S+$")
+
+
+@dataclass(frozen=True)
+class Option:
+    """One option: ``name`` without ``-adh_`` (the Python keyword), the group it is listed under,
+    its ``kind`` (``"bool"``, ``"int"``, ``"real"``, ``"str"``, ``"choice"``, ``"int list"``,
+    ``"real list"``), the default as -help prints it and as a Python value (``None``: not set,
+    the library chooses), the choices of a ``"choice"``, and the help text."""
+    name: str
+    group: str
+    kind: str
+    default_text: str
+    default: object
+    text: str
+    choices: tuple = field(default=())
+
+    @property
+    def python_type(self) -> str:
+        """The type as numpydoc writes it."""
+        return {"bool": "bool", "int": "int", "real": "float", "str": "str",
+                "int list": "int or sequence of int", "real list": "float or sequence of float",
+                "choice": "{" + ", ".join(repr(c) for c in self.choices) + "}"}[self.kind]
+
+
+def _real(text):
+    """A real as PETSc prints it: always with a '.' ("1.", "1e-08", "inf.")."""
+    return float(text[:-1] if text.endswith(".") else text)
+
+
+def _number(text):
+    """An int, or a real when PETSc printed one (it gives every real a '.' or an exponent)."""
+    try:
+        return int(text)
+    except ValueError:
+        return _real(text)
+
+
+def _not_set(value):
+    """-help shows some options' 'not set' as a sentinel (-2: the library chooses; a huge modulus:
+    a rigid body): in Python that is None."""
+    return isinstance(value, float) and (value == -2.0 or abs(value) >= 1e300)
+
+
+def parse_help(text: str) -> list[Option]:
+    """The options of a solver's -help text, in the order and groups it prints them."""
+    options, group = [], ""
+    for line in text.splitlines():
+        if line and not line.startswith(" ") and line.endswith(":"):
+            group = line[:-1].replace("adhbem ", "", 1)
+            continue
+        m = _LINE.match(line)
+        if not m:
+            continue
+        name, raw, body = m["name"], m["default"], m["text"]
+        if name.startswith(("ksp_", "pc_", "local_ksp_", "local_pc_")):
+            continue  # PETSc's own, of the solver's KSPs
+        choices = ()
+        c = _CHOICES.match(body)
+        if c:
+            body, choices = c["text"], tuple(c["choices"].split())
+        formerly, pair = _FORMERLY.match(raw), _REAL_PAIR.match(raw)
+        if m["boolcolon"]:
+            kind, default = "bool", raw.split(" : ")[0].strip().upper() == "TRUE"
+        elif choices:
+            kind, default = "choice", formerly["now"] if formerly else raw
+        elif formerly:  # PETSc prints ints and strings as "now X : formerly Y"
+            now = formerly["now"]
+            try:
+                kind, default = "int", int(now)
+            except ValueError:
+                kind, default = "str", now or None
+        elif pair:  # and reals as "X : Y"
+            kind, default = "real", _real(pair["now"])
+        else:  # arrays as "X,Y,..."
+            values = [_number(v) for v in raw.split(",") if v]
+            kind = "int list" if all(isinstance(v, int) for v in values) else "real list"
+            default = values[0] if len(values) == 1 else values
+            if kind == "real list":
+                default = float(default) if len(values) == 1 else [float(v) for v in values]
+        if _not_set(default):
+            default = None
+        options.append(Option(name, group, kind, raw, default, body.strip(), choices))
+    return options
+
+
+@lru_cache(maxsize=1)
+def solver_options() -> tuple[Option, ...]:
+    """The table of the solver's options (read once per process)."""
+    from .solver import _adhbem
+    return tuple(parse_help(_adhbem.option_help("adhbemhelp_")))
+
+
+def python_text(text: str) -> str:
+    """An option's help text with its references to other options as Python keywords."""
+    return re.sub(r"-adh_(\w+)", r"``\1``", text)
+
+
+def markdown() -> str:
+    """The table as Markdown: option, Python keyword, default, meaning, by group."""
+    out, group = [], None
+    for o in solver_options():
+        if o.group != group:
+            group = o.group
+            out += ["", f"## {group[0].upper() + group[1:]}", "", "| option | default | meaning |", "| --- | --- | --- |"]
+        choices = f" (one of {', '.join(o.choices)})" if o.choices else ""
+        default = "not set" if o.default is None else f"`{o.default}`"
+        out.append(f"| `-adh_{o.name}` (`{o.name}=`) | {default} | {o.text}{choices} |".replace("\n", " "))
+    return "\n".join(out).strip() + "\n"
+
+
+if __name__ == "__main__":
+    print(markdown(), end="")

@@ -1,0 +1,97 @@
+"""What a Python user discovers of the API: Solver's keywords, defaults and documentation come from
+the library's option table (the executable's -help), so every option is there with its default;
+curve() documents every column it returns; fields and rough surfaces come back as NumPy arrays."""
+import inspect
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import adhbem
+from adhbem import PETSc
+from adhbem.options import parse_help, solver_options
+from adhbem_build import EXE
+from common import gamma_for
+
+
+def test_every_option_of_the_executable_is_a_documented_keyword():
+    """The executable's -help lists the options; each is a keyword of Solver's signature, with the
+    default -help shows, and has an entry in its docstring."""
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("runs the executable itself")
+    help_text = subprocess.run([EXE, "-help"], capture_output=True, text=True, timeout=60).stdout
+    exe = {o.name: o for o in parse_help(help_text)}
+    assert {"n", "gamma", "criterion", "boundary", "path", "fftw_planner", "cascade_local"} <= set(exe)
+    sig = inspect.signature(adhbem.Solver).parameters
+    doc = adhbem.Solver.__doc__
+    for name, o in exe.items():
+        if name in ("view", "traceback"):  # the executable's own: Solver.view(), exceptions
+            continue
+        assert name in sig, name
+        if name not in ("topography", "topography_kind", "gamma_field"):  # Python takes more there
+            assert sig[name].default == o.default, (name, sig[name].default, o.default)
+        assert re.search(rf"^{name} : ", doc, re.M), name
+    # and nothing the executable lacks, but the Python-only ones
+    extra = set(sig) - set(exe) - {"comm", "petsc_options"}
+    assert not extra, extra
+
+
+def test_defaults_are_the_libraries():
+    """A few defaults as -help prints them, so a parser error cannot pass unseen."""
+    table = {o.name: o for o in solver_options()}
+    assert table["n"].default == 64 and table["n"].kind == "int list"
+    assert table["size"].default == 1.0 and table["size"].kind == "real list"
+    assert table["gamma"].default == 0.0 and table["gamma"].kind == "real"
+    assert table["steps"].default == 10 and table["steps"].kind == "int"
+    assert table["certify"].default is True and table["criterion_certify"].default is False
+    assert table["criterion"].choices == ("pohrt-popov", "crack-closure")
+    assert table["boundary"].default == "free" and table["boundary"].choices == ("free", "periodic")
+    assert table["rms_slope"].default is None  # chosen by the library (0.1 unless rms_height)
+    assert table["output"].default is None and table["output"].kind == "str"
+
+
+def test_curve_docstring_names_every_column():
+    z = np.tile(np.cos(2 * np.pi * np.arange(16) / 16), (16, 1)) * 0.01
+    for kw in (dict(n=16), dict(boundary="periodic", topography=z)):
+        c = adhbem.Solver(gamma=1e-3, path=[0.004, 0.0], steps=1, **kw).solve_path()
+        for column in c:
+            assert f"``{column}``" in adhbem.Solver.curve.__doc__, column
+
+
+@pytest.mark.mpi
+@pytest.mark.ranks3
+def test_field_arrays_whole_and_local():
+    """Each field as a NumPy array: the whole (Ny, Nx) on every rank, or this rank's rows; equal to
+    the petsc4py objects; the contact mask is bool and counts the contact points."""
+    N = 24
+    s = adhbem.Solver(n=N, gamma=gamma_for(0.15), path=[0.02, -0.002], steps=2)
+    curve = s.solve_path()
+    s.start(0.02)
+    j0, j1 = s.rows
+    for name in ("pressure", "displacement", "gap", "profile", "critical_stress", "contact"):
+        whole, mine = s.array(name), s.array(name, local=True)
+        assert whole.shape == (N, N) and mine.shape == (j1 - j0, N)
+        assert np.array_equal(whole[j0:j1], mine)
+    assert np.array_equal(s.pressure_array(), adhbem.gather(s.pressure, s.compliance))
+    assert s.contact_array().dtype == bool
+    assert s.contact_array().sum() == s.state()["contact_points"] > 0
+    np.testing.assert_allclose(s.gap_array(), s.profile_array() - 0.02 + s.displacement_array(), rtol=0, atol=1e-15)
+    assert abs(s.pressure_array().sum() * (1 / N) ** 2 - s.state()["force"]) < 1e-12
+    with pytest.raises(ValueError, match="no field 'stress'"):
+        s.array("stress")
+    assert len(curve["d"]) >= 2
+
+
+@pytest.mark.mpi
+def test_rough_surface_as_array_and_the_grid_from_its_shape():
+    """rough_surface(as_array=True) is the gathered Vec, and a Solver takes its grid from an
+    array topography's shape (Ny, Nx) when n is not given."""
+    z, stats = adhbem.rough_surface((24, 16), (1.5, 1.0), seed=4, as_array=True)
+    v, _ = adhbem.rough_surface((24, 16), (1.5, 1.0), seed=4)
+    assert isinstance(z, np.ndarray) and z.shape == (16, 24)
+    assert np.array_equal(z, adhbem.gather(v, v))
+    assert abs(z.std() - stats["realised_rms_height"]) < 1e-12
+    s = adhbem.Solver(topography=z, size=(1.5, 1.0), boundary="periodic")
+    assert adhbem.grid_shape(s.compliance) == (24, 16)
+    assert np.array_equal(s.profile_array(), z.max() - z)

@@ -7,9 +7,9 @@ the same defaults and words, and cannot drift from it.
 """
 from __future__ import annotations
 
+import itertools
 import re
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 # -PREFIXadh_NAME[:] <DEFAULT>[:] TEXT [(choose one of) | (one of) CHOICES] (MANUAL PAGE)
 _LINE = re.compile(r"^\s+-\w*?adh_(?P<name>\w+)(?P<boolcolon>:?) <(?P<default>[^>]*)>:? (?P<text>.*) \((?P<man>[^()]*)\)$")
@@ -101,11 +101,18 @@ def parse_help(text: str) -> list[Option]:
     return options
 
 
-@lru_cache(maxsize=1)
+_table = None
+_reads = itertools.count(1)
+
+
 def solver_options() -> tuple[Option, ...]:
     """The table of the solver's options (read once per process)."""
-    from .solver import _adhbem
-    return tuple(parse_help(_adhbem.option_help("adhbemhelp_")))
+    global _table
+    from .solver import _adhbem  # importing it documents Solver, which reads the table
+    if _table is None:
+        # PETSc prints a group's help once per prefix: each read has a prefix of its own
+        _table = tuple(parse_help(_adhbem.option_help(f"adhbemhelp{next(_reads)}_")))
+    return _table
 
 
 def python_text(text: str) -> str:
@@ -127,4 +134,5 @@ def markdown() -> str:
 
 
 if __name__ == "__main__":
-    print(markdown(), end="")
+    from adhbem import options  # the package's module (this one runs as __main__), which Solver reads
+    print(options.markdown(), end="")

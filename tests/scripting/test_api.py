@@ -95,3 +95,15 @@ def test_rough_surface_as_array_and_the_grid_from_its_shape():
     s = adhbem.Solver(topography=z, size=(1.5, 1.0), boundary="periodic")
     assert adhbem.grid_shape(s.compliance) == (24, 16)
     assert np.array_equal(s.profile_array(), z.max() - z)
+
+
+def test_the_table_prints_as_markdown():
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("starts its own process")
+    import sys
+    from common import python_env
+    r = subprocess.run([sys.executable, "-m", "adhbem.options"], capture_output=True, text=True, env=python_env(), timeout=120)
+    assert r.returncode == 0, r.stderr
+    rows = [line for line in r.stdout.splitlines() if line.startswith("| `-adh_")]
+    assert len(rows) == len(solver_options()) > 50
+    assert "| `-adh_gamma` (`gamma=`) | `0.0` | Work of adhesion dgamma (0: non-adhesive) |" in r.stdout

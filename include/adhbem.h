@@ -262,6 +262,10 @@ PETSC_EXTERN PetscErrorCode AdhSolverRecordState(AdhSolver, PetscLogDouble t0, A
    -adh_monitor sets AdhSolverMonitorDefault, one line per state. */
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorSet(AdhSolver, PetscErrorCode (*)(AdhSolver, PetscInt, const AdhState *, void *), void *, PetscErrorCode (*)(void **));
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorCancel(AdhSolver);
+/* -adh_progress: seconds of a path before its first progress line (state, time so far, time left),
+   then every tenth of the time so far or this, whichever is longer; 0: none. */
+PETSC_EXTERN PetscErrorCode AdhSolverSetProgress(AdhSolver, PetscReal seconds);
+PETSC_EXTERN PetscErrorCode AdhSolverGetProgress(AdhSolver, PetscReal *seconds);
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorDefault(AdhSolver, PetscInt, const AdhState *, void *);
 /* Calls the monitors with a recorded state; one that fails on any rank fails on every rank. */
 PETSC_EXTERN PetscErrorCode AdhSolverMonitor(AdhSolver, PetscInt step, const AdhState *);

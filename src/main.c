@@ -118,19 +118,38 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
   {
-    PetscInt ksp = 0, mults = 0, outer = 0, ffts = 0;
+    /* The words, one meaning each: the pull-off force is the largest tension the contact carried
+       (-min F; the results file's pull_off_force); the contact is lost where a leg ends by
+       pull-off (nothing in contact after it). */
+    PetscInt  ksp = 0, mults = 0, outer = 0, ffts = 0, touched = 0;
+    PetscReal dlost = 0;
+    PetscBool lost = PETSC_FALSE;
+    char      words[256];
     for (PetscInt k = 0; k < curve->n; k++) {
       const AdhState *st = &curve->state[k];
       if (st->force < Fmin) {
         Fmin = st->force;
         dmin = st->d;
       }
+      if (st->pulled_off && !lost) {
+        lost  = PETSC_TRUE;
+        dlost = st->d;
+      }
+      touched += st->contact_points > 0;
       ksp += st->ksp_iterations;
       mults += st->compliance_applications;
       outer += st->outer_iterations;
       ffts += st->fft_pairs;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; largest tensile force (pull-off force) %g at d = %g; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, (double)(Fmin < 0 ? -Fmin : 0.0), (double)dmin, outer, ksp, mults, ffts));
+    if (!touched) PetscCall(PetscSNPrintf(words, sizeof(words), "the surfaces never touched"));
+    else if (Fmin < 0) PetscCall(PetscSNPrintf(words, sizeof(words), "pull-off force (the largest tension) %g at d = %g", (double)-Fmin, (double)dmin));
+    else PetscCall(PetscSNPrintf(words, sizeof(words), "no tension carried"));
+    if (lost) {
+      size_t len;
+      PetscCall(PetscStrlen(words, &len));
+      PetscCall(PetscSNPrintf(words + len, sizeof(words) - len, "; contact lost at d = %g", (double)dlost));
+    }
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; %s; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, words, outer, ksp, mults, ffts));
   }
   PetscCall(AdhSolverResolutionView(solver, NULL));
   PetscFunctionReturn(0);

@@ -99,7 +99,7 @@ def jkr(args):
           f"{int(curve['compliance_applications'].sum())} compliance applications, "
           f"{int(curve['ksp_iterations'].sum())} KSP iterations, {int(curve['outer_iterations'].sum())} set updates")
     print(criterion_line(opts))
-    table([("largest tensile force", -F[k], F_adh),
+    table([("pull-off force (the largest tension)", -F[k], F_adh),
            ("indentation at largest tension", d[k], -d_c),
            ("contact radius at largest tension", a[k], a_c),
            ("jump-off indentation (last contact)", d[last], -2.080 * d_c),

@@ -49,7 +49,7 @@ def worker(a):
     for name, gamma in (("rough", a.gamma), ("rough_nonadhesive", 0.0)):
         # the same indentations on approach and retraction down to d = 0, then on to pull-off
         s = adhbem.Solver(**opts, gamma=gamma, start="adhesive",
-                          path=[0.0, d1, 0.0, -d1], steps=a.steps, monitor=True,
+                          path=[0.0, d1, 0.0, -d1], steps=a.steps,
                           fields="contact" if gamma else "none",
                           output=os.path.join(a.results, name + ".h5"))
         if rank == 0:
@@ -74,21 +74,20 @@ def report(a):
     attrs = params["rough"]  # the adhesive run's: its resolution
     c, c0 = curves["rough"], curves["rough_nonadhesive"]
     k, k0 = int(np.argmax(c["d"])), int(np.argmax(c0["d"]))
-    N2 = a.n * a.n
     seconds = c["seconds"].sum() + c0["seconds"].sum()
     print(f"\nrough surface {a.n} x {a.n} (Hurst {attrs['hurst']:.2g}, rms slope {attrs['realised_rms_slope']:.4g},"
           f" rms height {attrs['realised_rms_height']:.4g}), dgamma = {a.gamma}, {a.np} ranks:"
           f" {seconds:.0f} s of solving, {int(c['ksp_iterations'].sum() + c0['ksp_iterations'].sum())} KSP iterations,"
           f" {int(c['compliance_applications'].sum() + c0['compliance_applications'].sum())} compliance applications,"
           f" {int(c['fft_pairs'].sum() + c0['fft_pairs'].sum())} FFT pairs")
-    print(f"{'quantity':<46}{'with adhesion':>16}{'without':>16}")
-    rows = [("largest pull-off force (largest tension)", max(0.0, -c["force"].min()), max(0.0, -c0["force"].min())),
-            ("force at the largest load", c["force"][k], c0["force"][k0]),
-            ("contact area fraction at the largest load", c["area"][k] / N2, c0["area"][k0] / N2),
-            ("contact patches at the largest load", c["patches"][k], c0["patches"][k0]),
+    print(f"{'quantity':<52}{'with adhesion':>16}{'without':>16}")
+    rows = [("pull-off force (the largest tension)", max(0.0, -c["force"].min()), max(0.0, -c0["force"].min())),
+            ("mean pressure at the deepest indentation", c["mean_pressure"][k], c0["mean_pressure"][k0]),
+            ("contact area fraction at the deepest indentation", c["area_fraction"][k], c0["area_fraction"][k0]),
+            ("contact patches at the deepest indentation", c["patches"][k], c0["patches"][k0]),
             ("energy dissipated over the loop", loop_energy(c["d"], c["force"]), loop_energy(c0["d"], c0["force"]))]
     for name, x, y in rows:
-        print(f"{name:<46}{x:>16.6g}{y:>16.6g}")
+        print(f"{name:<52}{x:>16.6g}{y:>16.6g}")
     ac = attrs.get("asperity_contact_radius", 0.0)
     share = attrs.get("pull_off_small_patch_tension", 0.0)
     print(f"resolution: the smallest asperities' JKR contact radius spans about {ac:.3g} grid spacings;"

@@ -633,6 +633,18 @@ static PyObject *py_solver_write(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
+/* -adh_progress of a solver: set it when a value is given, and return the one before. */
+static PyObject *py_solver_progress(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  double    seconds = -1;
+  PetscReal before;
+  if (!PyArg_ParseTuple(args, "O|d", &cap, &seconds)) return NULL;
+  PyPetscCall(AdhSolverGetProgress(solver_get(cap), &before));
+  if (seconds >= 0) PyPetscCall(AdhSolverSetProgress(solver_get(cap), (PetscReal)seconds));
+  return PyFloat_FromDouble((double)before);
+}
+
 /* How well the grid resolves the adhesion, as the results file's attributes name it. */
 static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
 {
@@ -675,6 +687,7 @@ static PyMethodDef methods[] = {
   {"solver_set_topography", py_solver_set_topography, METH_VARARGS, "solver_set_topography(s, vec, kind): indenter profile from a height map or gap (kind 'height' or 'gap')"},
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
+  {"solver_progress", py_solver_progress, METH_VARARGS, "solver_progress(s[, seconds]) -> the -adh_progress before (set when given)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},

@@ -373,12 +373,67 @@ class Solver:
         """The current state as a dict of the curve's columns (not recorded)."""
         return _adhbem.solver_state(self._s)
 
-    def solve_path(self):
-        """Runs the option path and returns the curve. With option output, writes the results file
-        (and the fields of its states with option fields)."""
-        _adhbem.solver_solve_path(self._s)
-        _adhbem.solver_resolution_view(self._s)  # the lines the executable prints at the end
+    def solve_path(self, progress=None):
+        """Runs the option ``path`` and returns the curve (see ``curve()``).
+
+        With the option ``output``, writes the results file as it goes (and the fields of its
+        states with the option ``fields``); ``checkpoint`` and ``restart`` work as for the
+        executable. At the end it prints how well the grid resolves the adhesion (``resolution``).
+
+        Parameters
+        ----------
+        progress : bool or None, optional
+            ``None`` (default): a progress bar with the time left on rank 0 when tqdm is
+            installed and the output is a terminal, else the library's progress lines (one after
+            ``progress`` seconds, the option, then now and then). ``True``: the bar wherever tqdm
+            is installed. ``False``: quiet: no progress and no resolution lines.
+
+        Returns
+        -------
+        dict of numpy.ndarray
+            The curve, a row per recorded state.
+        """
+        import sys
+        bar = None
+        if progress is not False:
+            bar = self._progress_bar(force=progress is True, interactive=sys.stderr.isatty())
+        before = _adhbem.solver_progress(self._s, 0.0) if (bar is not None or progress is False) else None
+        try:
+            _adhbem.solver_solve_path(self._s)
+        finally:
+            if before is not None:
+                _adhbem.solver_progress(self._s, before)
+            if bar is not None:
+                bar.close()
+            self._bar = None
+        if progress is not False:
+            _adhbem.solver_resolution_view(self._s)  # the lines the executable prints at the end
         return self.curve()
+
+    def _progress_bar(self, force, interactive):
+        """A tqdm bar over the path's states on rank 0 (None elsewhere, or without tqdm, or when
+        not wanted); the solver's own monitor moves it."""
+        if not (force or interactive):
+            return None
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            return None
+        if not getattr(self, "_bar_monitor", False):
+            self.monitor(self._move_bar)
+            self._bar_monitor = True
+        if self.compliance.getComm().getRank() != 0:
+            return None
+        path, steps = _adhbem.solver_path(self._s)
+        self._bar = tqdm(total=1 + (len(path) - 1) * steps, unit="state", desc="adhbem", leave=True)
+        return self._bar
+
+    def _move_bar(self, step, state):
+        bar = getattr(self, "_bar", None)
+        if bar is not None:
+            bar.n = step + 1  # a leg that ends by pull-off skips its remaining states
+            bar.set_postfix(d=f"{state['d']:.4g}", F=f"{state['force']:.4g}", refresh=False)
+            bar.refresh()
 
     def iterate_path(self):
         """Runs the option path as solve_path() does, a state at a time: yields each state (a dict of

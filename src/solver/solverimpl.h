@@ -197,6 +197,11 @@ struct _n_AdhSolver {
   PetscInt  step_outer, step_ksp, step_mults, step_ffts;
   PetscLogDouble progress_time;  /* last progress line inside a step (-adh_monitor) */
   PetscReal monitor_interval;   /* seconds between progress lines */
+  /* the path's progress (path.c): a line now and then, with the time left (-adh_progress) */
+  PetscReal      progress;         /* seconds before the first line (0: none) */
+  PetscLogDouble path_start, progress_last; /* when the path began, and the last line */
+  PetscInt       path_states, path_first;    /* the states a path records at most, the first row this run records */
+  PetscBool      on_path;          /* inside AdhSolverSolvePath: the totals above hold */
 
   /* monitors, called after every recorded state */
   PetscInt nmonitors;

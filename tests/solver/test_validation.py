@@ -81,7 +81,7 @@ def jkr_run(N, critical_stress=None, criterion=None):
         run = dict(curve=c, Sigma=s.critical_stress, h=L_JKR / N, ac=ac, dc=dc, Fadh=Fadh,
                    dn=c["d"] / dc, Fn=c["force"] / Fadh, an=radius(c["area"]) / ac,
                    n=c["contact_points"], seconds=seconds)
-        run["max_tension"] = -run["Fn"].min()          # largest tensile force / F_adh
+        run["max_tension"] = -run["Fn"].min()          # largest tension / F_adh
         run["error"] = run["max_tension"] - 1.0
         inside = np.nonzero(run["n"] > 0)[0]
         run["last"] = inside[-1]                       # last state with contact
@@ -261,7 +261,7 @@ def test_mesh_dependence_of_the_criterion():
     fix = [jkr_run(N, critical_stress=fixed_stress, criterion="pohrt-popov") for N in grids]
     F_sig = np.array([r["max_tension"] for r in sig])
     F_fix = np.array([r["max_tension"] for r in fix])
-    say(f"\nmesh dependence, largest tensile force / F_adh on a_c/h = 12.5, 25, 50:")
+    say(f"\nmesh dependence, largest tension / F_adh on a_c/h = 12.5, 25, 50:")
     sigmas = ", ".join(f"{r['Sigma']:.4f}" for r in sig)
     say(f"  Sigma ~ h^-1/2 ({sigmas}): {F_sig.round(4)},"
         f" successive differences {np.abs(np.diff(F_sig)).round(4)}")

@@ -178,12 +178,51 @@ PetscErrorCode AdhSolverMonitorCancel(AdhSolver s)
 }
 
 /* One line per state (the header before the first), and a line at pull-off. */
+/* Seconds left on the path after the state just recorded, from the mean time of this run's
+   states (an upper bound where a leg ends early by pull-off); -1 outside a path or before a state. */
+static PetscReal SecondsLeft(AdhSolver s, PetscLogDouble now)
+{
+  const PetscInt done = s->curve.n - s->path_first;
+  if (!s->on_path || done <= 0) return -1;
+  return (PetscReal)((now - s->path_start) / done * (PetscReal)PetscMax(0, s->path_states - s->curve.n));
+}
+
 PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhState *st, void *ctx)
 {
+  PetscLogDouble now;
+  PetscReal      left;
+  char           text[32] = "-";
+
   PetscFunctionBegin;
-  if (step == 0) PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s\n", "step", "d", "force", "area", "points", "patches", "outer", "ksp", "K-mults", "seconds"));
-  PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %7" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f\n", step, (double)st->d, (double)st->force, (double)st->area, st->contact_points, st->patches, st->outer_iterations, st->ksp_iterations, st->compliance_applications, (double)st->seconds));
-  if (st->pulled_off) PetscCall(PetscPrintf(s->comm, "pull-off at d = %g, force %g: the contact has come off, the leg ends\n", (double)st->d, (double)st->force));
+  PetscCall(PetscTime(&now));
+  left = SecondsLeft(s, now);
+  if (left >= 0) PetscCall(PetscSNPrintf(text, sizeof(text), left < 10 ? "%.1f" : "%.0f", (double)left));
+  /* the header with the first state of a path or of a restart, and of a step-by-step run */
+  if (step == 0 || step == s->path_first) {
+    PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s %7s\n", "state", "d", "force", "area", "points", "patches", "outer", "ksp", "K-mults", "seconds", "left"));
+    PetscCall(PetscPrintf(s->comm, "%5s %13s %13s %13s %8s %7s %6s %7s %7s %9s %7s\n", "", "[length]", "[force]", "[length^2]", "", "", "", "", "", "[s]", "[s]"));
+  }
+  PetscCall(PetscPrintf(s->comm, "%5" PetscInt_FMT " %13.6e %13.6e %13.6e %8" PetscInt_FMT " %7" PetscInt_FMT " %6" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3f %7s\n", step, (double)st->d, (double)st->force, (double)st->area, st->contact_points, st->patches, st->outer_iterations, st->ksp_iterations, st->compliance_applications, (double)st->seconds, text));
+  if (st->pulled_off) PetscCall(PetscPrintf(s->comm, "contact lost at d = %g: the leg ends\n", (double)st->d));
+  PetscFunctionReturn(0);
+}
+
+/* -adh_progress: a line after the first `progress` seconds of a path, then every tenth of the
+   time so far (or `progress`, if longer), unless -adh_monitor prints one a state. */
+static PetscErrorCode Progress(AdhSolver s)
+{
+  PetscLogDouble now, so_far;
+  PetscReal      left;
+  const AdhState *st = &s->curve.state[s->curve.n - 1];
+
+  PetscFunctionBegin;
+  if (!(s->progress > 0) || s->monitor || !s->on_path) PetscFunctionReturn(0);
+  PetscCall(PetscTime(&now));
+  so_far = now - s->path_start;
+  if (now - s->progress_last < PetscMax(s->progress, 0.1 * so_far)) PetscFunctionReturn(0);
+  s->progress_last = now;
+  left             = SecondsLeft(s, now);
+  PetscCall(PetscPrintf(s->comm, "adhbem: state %" PetscInt_FMT " of at most %" PetscInt_FMT " (d = %g, force %g, %" PetscInt_FMT " points in contact): %.0f s so far, about %.0f s left\n", s->curve.n - 1, s->path_states - 1, (double)st->d, (double)st->force, st->contact_points, (double)so_far, (double)left));
   PetscFunctionReturn(0);
 }
 
@@ -231,6 +270,7 @@ static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
   if (viewer && (s->curve.n - 1) % s->fields_stride == 0) PetscCall(AdhResults.write_fields(s, viewer, s->curve.n - 1));
   if (viewer) PetscCall(AdhResults.append(s, viewer));
   PetscCall(AdhSolverMonitor(s, s->curve.n - 1, &st));
+  PetscCall(Progress(s));
   PetscFunctionReturn(0);
 }
 
@@ -279,6 +319,10 @@ static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer, PetscInt l
   PetscLogDouble t0;
 
   PetscFunctionBegin;
+  PetscCall(PetscTime(&s->path_start));
+  s->progress_last = s->path_start;
+  s->path_states   = 1 + (s->npath - 1) * s->steps;
+  s->path_first    = s->restart[0] ? s->curve.n : 0;
   if (s->restart[0]) {
     /* go on after the checkpoint's state; a leg that ended in pull-off is over */
     if (leg0 == 0) leg0 = 1;
@@ -395,7 +439,9 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   term           = signal(SIGTERM, OnSignal);
   intr           = signal(SIGINT, OnSignal);
   s->stoppable   = PETSC_TRUE;
+  s->on_path     = PETSC_TRUE;
   ierr           = SolvePathOpen(s, &viewer, leg0, step0);
+  s->on_path     = PETSC_FALSE;
   s->stoppable   = PETSC_FALSE;
   /* What was computed before an error or a stop is still written, marked incomplete. */
   if (viewer) {

@@ -37,6 +37,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->memory_check     = PETSC_TRUE;
   s->checkpoint_every = 1;
   s->monitor_interval = 5.0;
+  s->progress         = 5.0;
   PetscCall(PetscMalloc1(2, &s->path));
   s->npath   = 2;
   s->path[0] = 0.01;
@@ -100,6 +101,21 @@ PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
 {
   PetscFunctionBegin;
   *Sigma = s->Sigma;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
+{
+  PetscFunctionBegin;
+  PetscCheck(seconds >= 0 && !PetscIsNanReal(seconds), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)seconds);
+  s->progress = seconds;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
+{
+  PetscFunctionBegin;
+  *seconds = s->progress;
   PetscFunctionReturn(0);
 }
 

@@ -93,6 +93,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsInt("-adh_fields_stride", "Write the fields of every K-th state (0, K, 2K, ...)", "AdhSolver", s->fields_stride, &s->fields_stride, NULL));
   monitor_set = s->monitor;
   PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolverMonitorSet", s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsReal("-adh_progress", "Print a progress line (state, time so far and an estimate of the time left) after this many seconds of a path, then every tenth of the time so far or this, whichever is longer (0: none; -adh_monitor prints a line a state instead)", "AdhSolver", s->progress, &s->progress, NULL));
   PetscCall(PetscOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
   PetscCall(PetscOptionsString("-adh_checkpoint", "Checkpoint file: the state after recorded states (replaced atomically), to go on from with -adh_restart", "AdhSolver", s->checkpoint, s->checkpoint, sizeof(s->checkpoint), NULL));
   PetscCall(PetscOptionsInt("-adh_checkpoint_every", "Write the checkpoint after every K-th state (and when SIGTERM or SIGINT stops the run)", "AdhSolver", s->checkpoint_every, &s->checkpoint_every, NULL));
@@ -126,6 +127,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
+  PetscCheck(s->progress >= 0 && !PetscIsNanReal(s->progress), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)s->progress);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
   PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);

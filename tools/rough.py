@@ -98,10 +98,11 @@ def report(a):
 
 
 def plot(a, c, c0):
-    """adhbem.plot: the loop and area against force beside the non-adhesive run, and the contact
-    maps at the largest load and the largest tension."""
+    """adhbem.plot: the loop and the area fraction against mean pressure beside the non-adhesive
+    run, and the contact maps at the deepest indentation and the largest tension."""
     from adhbem.plot import plot as draw
-    out = draw(os.path.join(a.results, "rough.h5"), compare=[os.path.join(a.results, "rough_nonadhesive.h5")])
+    out = draw(os.path.join(a.results, "rough.h5"), compare=[os.path.join(a.results, "rough_nonadhesive.h5")],
+               labels=[f"with adhesion ($\\Delta\\gamma$ = {a.gamma:g})", "without adhesion"])
     print(f"wrote {out}, {os.path.join(a.results, 'rough.h5')} (.csv, .xmf), {os.path.join(a.results, 'rough_nonadhesive.h5')} (.csv)")
 
 

@@ -1,18 +1,29 @@
-"""Plots of a results file: python3 -m adhbem.plot FILE.h5 [--out FILE.png] [--states K,L,...]
-[--compare OTHER.h5 ...] [--normalised]
+"""Figures of results files for papers: python3 -m adhbem.plot FILE.h5 [--out FILE.pdf]
+[--width column|double] [--states deepest,tension,K] [--compare OTHER.h5 ...] [--normalised]
+[--resolution]
 
-Draws the force against the indentation, with the approach and the retraction told apart (and
-the analytic curve where the indenter has one on a free boundary: Hertz or JKR for the sphere,
-Kendall for the flat punch, the JKR-type cone), the contact area against the force, and, when the
-file has fields (-adh_fields), contact maps of the chosen states (default: the deepest
-indentation and the largest tension). Curves of other results files (--compare, e.g. the same
-surface without adhesion) are drawn beside, each labelled by its file name and what differs
-between the runs. --normalised draws the JKR sphere on a free boundary in F/F_adh, a/a_c and
-d/|d_c|, and a periodic cell as mean pressure and contact area fraction. Writes FILE.png by
-default.
+One function a panel, each drawing on matplotlib axes of your own:
 
-adhbem has no units of its own: lengths, E* and dgamma are those of the input, any consistent
-set (forces are then in E* x length^2, pressures in E*).
+- ``curve(ax, results)``: force against indentation (mean pressure on a periodic cell), the
+  approach solid and the retraction dashed, the analytic curve over the data's range where the
+  indenter has one (Hertz or JKR for the sphere, Kendall's punch, the JKR-type cone), the pull-off
+  force (the largest tension) and the state where the contact was lost marked;
+- ``area(ax, results)``: contact area against force (area fraction against mean pressure on a
+  periodic cell);
+- ``contact_map(ax, results, state)``: the pressure on the contact (or the contact set) of a state,
+  named by what it is (``"deepest"`` indentation, largest ``"tension"``) or by its curve row, with
+  its colour bar;
+- ``resolution(ax, results)``: the share of the tension carried by patches too small to be
+  resolved, per state.
+
+``figure(results)`` puts them together at the width of a journal column (3.5 in) or of a page
+(``width="double"``, 7.2 in); ``plot(FILE)`` writes it, as PNG, PDF or SVG by the extension of
+``out``. ``results`` is a file name or an ``adhbem.load(...)`` object; ``compare`` adds other runs
+(the same surface without adhesion, another criterion, ...), each labelled by its file name and
+what differs between the runs. ``normalised=True`` draws a JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+
+adhbem has no units of its own: lengths, E* and dgamma are those of the input (any consistent
+set), so axes carry symbols, not units.
 """
 import argparse
 import math
@@ -21,14 +32,49 @@ import sys
 
 import numpy as np
 
-from .results import load
+from .results import Results, load
 
-UNITS_NOTE = "units: those of the input (any consistent set); force in E* x length^2, pressure in E*"
-LENGTH = "input length unit"
+COLUMN = 3.5  # inches: one column of a two-column journal page
+DOUBLE = 7.2  # inches: the width of the page
+STYLE = {"font.size": 7, "axes.labelsize": 7, "axes.titlesize": 7, "legend.fontsize": 6, "xtick.labelsize": 6,
+         "ytick.labelsize": 6, "lines.linewidth": 0.9, "lines.markersize": 2.5, "axes.linewidth": 0.6,
+         "savefig.dpi": 300}
+STATE_NAMES = {"deepest": "deepest indentation", "tension": "largest tension"}
 
 
 class UsageError(ValueError):
     """An option that does not fit the file (--states out of range, --normalised without scales)."""
+
+
+class Run:
+    """One results file as the panels read it: its curve, parameters, label and field access."""
+
+    def __init__(self, results, label=None):
+        self._own = not isinstance(results, Results)
+        self.results = load(results) if self._own else results
+        self.path, self.curve, self.params = self.results.path, self.results.curve, self.results.params
+        if not len(self.curve.get("d", ())):
+            raise ValueError(f"{self.path} holds no state (the run stopped before its first)")
+        self.label = label
+
+    def close(self):
+        if self._own:
+            self.results.close()
+
+
+def _runs(results, compare=(), labels=None):
+    runs = [Run(r) for r in (results, *compare)]
+    given = list(labels) if labels else run_labels([r.path for r in runs], [r.params for r in runs])
+    if len(given) != len(runs):
+        raise UsageError(f"labels: one a run ({len(runs)}), got {len(given)}")
+    for run, label in zip(runs, given):
+        run.label = label
+    return runs
+
+
+def _close(runs):
+    for run in runs:
+        run.close()
 
 
 def analytic(params, d, area):
@@ -55,13 +101,6 @@ def analytic(params, d, area):
         dd = np.linspace(max(dcrit, d.min()), d.max(), 200)
         return "Kendall", dd, 2 * ap * E * dd, np.full_like(dd, math.pi * ap ** 2)
     return None
-
-
-def default_states(curve):
-    """The largest load (the deepest indentation) and, when a state carries tension, the largest
-    tension."""
-    F = curve["force"]
-    return sorted({int(np.argmax(curve["d"]))} | ({int(np.argmin(F))} if F.min() < 0 else set()))
 
 
 def adhesion_label(params):
@@ -95,7 +134,7 @@ def run_labels(paths, params):
     """One legend label per run: alone, what sticks; among others, the file's stem and what differs
     between the runs (adhesion, criterion, attach rule, grid, ...)."""
     if len(paths) == 1:
-        return [f"adhbem, {adhesion_label(params[0])}"]
+        return [adhesion_label(params[0])]
     described = [describe(p) for p in params]
     differs = [k for k in described[0] if len({d.get(k) for d in described}) > 1]
     names = [os.path.splitext(os.path.basename(p))[0] for p in paths]
@@ -127,11 +166,21 @@ def legs(curve, params):
     return out
 
 
+def visible(curve):
+    """The rows worth drawing: states in contact and their neighbours (the last state before first
+    touch, the first after the contact was lost); a run of states with nothing in contact is one
+    point on the axis, not a line along it."""
+    points = np.asarray(curve.get("contact_points", np.ones(len(curve["d"]))))
+    touching = points > 0
+    near = touching.copy()
+    near[1:] |= touching[:-1]
+    near[:-1] |= touching[1:]
+    return near
+
+
 def scales(params):
     """The scales --normalised divides by: ("jkr", F_adh, a_c, |d_c|) for a sphere with a uniform
-    dgamma > 0 on a free boundary, ("periodic", cell area) for a periodic cell, else None."""
-    if params.get("boundary") == "periodic":
-        return ("periodic", params["Nx"] * params["hx"] * params["Ny"] * params["hy"])
+    dgamma > 0 on a free boundary, else None."""
     g = params.get("gamma", 0.0)
     if (params.get("indenter") == "sphere" and params.get("boundary") == "free" and g > 0
             and not params.get("gamma_field") and not params.get("critical_stress_fixed")):
@@ -141,199 +190,387 @@ def scales(params):
     return None
 
 
-def quantities(d, F, A, scale):
-    """(x, F, area) as drawn, and their axis labels, in the input's units or normalised."""
-    if scale is None:
-        return (d, F, A), (f"indentation d ({LENGTH})", "force F (input units: E* x length^2)",
-                           f"contact area A ({LENGTH}^2)")
-    if scale[0] == "jkr":
+def _scale(run, normalised):
+    if not normalised:
+        return None
+    sc = scales(run.params)
+    if sc is None:
+        raise UsageError(f"--normalised: {run.path} has no scales to divide by: they are JKR's, for a sphere with "
+                         "a uniform dgamma > 0 on a free boundary (a periodic cell is drawn as mean pressure and "
+                         "contact area fraction already)")
+    return sc
+
+
+def quantities(d, F, A, params, scale=None):
+    """(x, y, area) as drawn, and their axis labels: the input's quantities, a periodic cell's mean
+    pressure and area fraction, or JKR's normalised ones."""
+    if scale is not None:
         _, Fadh, ac, dc = scale
         return (d / dc, F / Fadh, np.sqrt(A / math.pi) / ac), \
-            ("indentation d / |d_c|", "force F / F_adh", "contact radius a / a_c  (a = sqrt(A / pi))")
-    cell = scale[1]
-    return (d, F / cell, A / cell), (f"indentation d ({LENGTH})", "mean pressure F / (Lx Ly) (units of E*)",
-                                     "contact area fraction A / (Lx Ly)")
+            ("indentation $d/|d_c|$", "force $F/F_\\mathrm{adh}$", "contact radius $a/a_c$")
+    if params.get("boundary") == "periodic":
+        cell = params["Lx"] * params["Ly"]
+        return (d, F / cell, A / cell), ("indentation $d$", "mean pressure $\\bar p$", "contact area fraction")
+    return (d, F, A), ("indentation $d$", "force $F$", "contact area $A$")
 
 
-def check_states(path, states, n, field_states):
-    if not len(field_states):
-        raise UsageError(f"--states: {path} has no fields to map (write them with -adh_fields)")
-    for k in states:
-        if not -n <= k < n:
-            raise UsageError(f"--states: {k} is not a state of {path}: its curve has rows 0 to {n - 1} "
-                             f"(or -{n} to -1, counted from the end)")
+def _colors():
+    import matplotlib
+    return matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
 
 
-def draw_curve(ax, x, y, rows_by_leg, color, label, legend_done):
-    """One run's curve on ax: the approach solid, the retraction dashed, one legend entry each."""
-    for direction, rows in rows_by_leg:
+def _draw_legs(ax, x, y, run, color, many):
+    """A run's curve: approach solid, retraction dashed, the states with nothing in contact left out
+    but one at each end."""
+    show = visible(run.curve)
+    done = set()
+    for direction, rows in legs(run.curve, run.params):
+        rows = rows[show[rows]]
+        if len(rows) < 1:
+            continue
         kind = "approach" if direction > 0 else "retraction"
+        # alone: a legend entry a leg; among others: one a run (its colour), the legs by _leg_styles
+        label = (run.label if not done else "_nolegend_") if many else (kind if kind not in done else "_nolegend_")
+        done.add(kind)
         style = dict(ls="-", marker="o", mfc=color) if direction > 0 else dict(ls="--", marker="v", mfc="white")
-        first = (label, kind) not in legend_done
-        legend_done.add((label, kind))
-        ax.plot(x[rows], y[rows], color=color, ms=3.5, lw=1.0, mec=color, **style,
-                label=f"{label}, {kind}" if first else "_nolegend_")
+        ax.plot(x[rows], y[rows], color=color, mec=color, label=label, **style)
 
 
-def figure(path, states=None, compare=(), normalised=False):
-    """The matplotlib Figure of results file `path` (see the module's description); raises
-    UsageError when states or normalised do not fit the files."""
+def _leg_styles(ax):
+    """Legend entries for the line styles of the legs, in grey: when several runs share the axes
+    their colours name the runs."""
+    from matplotlib.lines import Line2D
+    return [Line2D([], [], color="0.4", ls="-", marker="o", label="approach"),
+            Line2D([], [], color="0.4", ls="--", marker="v", mfc="white", label="retraction")]
+
+
+def _finish(ax, legend, many=False):
+    from matplotlib.ticker import MaxNLocator
+    ax.xaxis.set_major_locator(MaxNLocator(3))
+    ax.yaxis.set_major_locator(MaxNLocator(5))
+    ax.axhline(0, color="0.75", lw=0.4, zorder=0)
+    ax.ticklabel_format(style="sci", scilimits=(-4, 5), useMathText=True)
+    if many:
+        ax._adhbem_styles = _leg_styles(ax)  # figure() puts them in its legend
+    if legend:
+        handles, _ = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + (ax._adhbem_styles if many else []), frameon=False)
+
+
+def curve(ax, results, compare=(), normalised=False, theory=True, legend=True, labels=None):
+    """Force against indentation on ``ax`` (mean pressure on a periodic cell; F/F_adh against
+    d/|d_c| with ``normalised``): approach solid, retraction dashed, the analytic curve over the
+    data's range, the pull-off force (the largest tension) as a star, and the state where the
+    contact was lost as a cross."""
+    runs = _runs(results, compare, labels)
+    try:
+        colors, many = _colors(), len(runs) > 1
+        first_scale = _scale(runs[0], normalised)
+        names = quantities(runs[0].curve["d"], runs[0].curve["force"], runs[0].curve["area"], runs[0].params, first_scale)[1]
+        lost_drawn = False
+        xs = []
+        for i, run in enumerate(runs):
+            c, color = run.curve, colors[i % len(colors)]
+            sc = _scale(run, normalised)
+            (x, y, _), _ = quantities(c["d"], c["force"], c["area"], run.params, sc)
+            xs.append(x[visible(c)])
+            _draw_legs(ax, x, y, run, color, many)
+            if c["force"].min() < 0:
+                k = int(np.argmin(c["force"]))
+                if sc:
+                    value = f"{-y[k]:.3g} $F_\\mathrm{{adh}}$"
+                elif run.params.get("boundary") == "periodic":
+                    value = f"($\\bar p$ = {y[k]:.3g})"
+                else:
+                    value = f"{-y[k]:.3g}"
+                ax.plot(x[k], y[k], "*", ms=7, color="red" if i == 0 else color, mec="red", zorder=5,
+                        label=f"pull-off force {value}")
+            lost = [k for k in np.nonzero(c.get("pulled_off", np.zeros(0)))[0] if c["force"][k] >= 0]
+            if lost:
+                ax.plot(x[lost], y[lost], "x", ms=5, mew=1.0, color=color, zorder=5,
+                        label="_nolegend_" if lost_drawn else "contact lost")
+                lost_drawn = True
+        ref = analytic(runs[0].params, runs[0].curve["d"], runs[0].curve["area"]) if theory else None
+        if ref:
+            name, rd, rF, rA = ref
+            (rx, ry, _), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
+            lo, hi = min(v.min() for v in xs), max(v.max() for v in xs)
+            keep = (rx >= lo) & (rx <= hi)  # theory over the data's range only
+            ax.plot(rx[keep], ry[keep], "k:", lw=1.0, label=f"{name} theory")
+        ax.set_xlabel(names[0] + (", force control" if runs[0].params.get("control") == "force" else ""))
+        ax.set_ylabel(names[1])
+        _finish(ax, legend, many)
+    finally:
+        _close(runs)
+
+
+def area(ax, results, compare=(), normalised=False, theory=True, legend=True, labels=None):
+    """Contact area against force on ``ax`` (area fraction against mean pressure on a periodic
+    cell; a/a_c against F/F_adh with ``normalised``), approach solid, retraction dashed."""
+    runs = _runs(results, compare, labels)
+    try:
+        colors, many = _colors(), len(runs) > 1
+        first_scale = _scale(runs[0], normalised)
+        names = quantities(runs[0].curve["d"], runs[0].curve["force"], runs[0].curve["area"], runs[0].params, first_scale)[1]
+        ys = []
+        for i, run in enumerate(runs):
+            c = run.curve
+            (_, y, A), _ = quantities(c["d"], c["force"], c["area"], run.params, _scale(run, normalised))
+            ys.append(y[visible(c)])
+            _draw_legs(ax, y, A, run, colors[i % len(colors)], many)
+        ref = analytic(runs[0].params, runs[0].curve["d"], runs[0].curve["area"]) if theory else None
+        if ref:
+            name, rd, rF, rA = ref
+            (_, ry, rA), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
+            lo, hi = min(v.min() for v in ys), max(v.max() for v in ys)
+            keep = (ry >= lo) & (ry <= hi)
+            ax.plot(ry[keep], rA[keep], "k:", lw=1.0, label=f"{name} theory")
+        ax.set_xlabel(names[1])
+        ax.set_ylabel(names[2])
+        ax.axvline(0, color="0.75", lw=0.4, zorder=0)
+        _finish(ax, legend, many)
+    finally:
+        _close(runs)
+
+
+def state_row(curve, state):
+    """The curve row of ``state``: an int (negative from the end), ``"deepest"`` (the deepest
+    indentation) or ``"tension"`` (the largest tension), or a tuple of those naming one row."""
+    n = len(curve["d"])
+    if isinstance(state, tuple):
+        return state_row(curve, state[0])
+    if state == "deepest":
+        return int(np.argmax(curve["d"]))
+    if state == "tension":
+        if curve["force"].min() >= 0:
+            raise UsageError("--states: 'tension': no state carries tension")
+        return int(np.argmin(curve["force"]))
+    k = int(state)
+    if not -n <= k < n:
+        raise UsageError(f"--states: {k} is not a state: the curve has rows 0 to {n - 1} (or -{n} to -1, from the end)")
+    return k % n
+
+
+def _edges(N, L):
+    """The outer edges of the elements along an axis: element i is centred at (i - N//2) h."""
+    h = L / N
+    return (-(N // 2) - 0.5) * h, (N - 1 - N // 2 + 0.5) * h
+
+
+def _window(mask, Lx, Ly):
+    """(x0, x1, y0, y1): a square around the points of mask with a fifth of its size to spare."""
+    if not mask.any():
+        return None
+    Ny, Nx = mask.shape
+    hx, hy = Lx / Nx, Ly / Ny
+    jj, ii = np.nonzero(mask)
+    x = (np.array([ii.min(), ii.max()]) - Nx // 2) * hx + np.array([-hx, hx]) / 2
+    y = (np.array([jj.min(), jj.max()]) - Ny // 2) * hy + np.array([-hy, hy]) / 2
+    cx, cy = x.mean(), y.mean()
+    half = 0.6 * max(x[1] - x[0], y[1] - y[0])
+    (x0, x1), (y0, y1) = _edges(Nx, Lx), _edges(Ny, Ly)
+    return (max(cx - half, x0), min(cx + half, x1), max(cy - half, y0), min(cy + half, y1))
+
+
+def _state_title(curve, state, row, periodic, params, scale=None):
+    names = state if isinstance(state, tuple) else (state,)
+    name = ", ".join(STATE_NAMES.get(s, f"state {row}") for s in names)
+    F = curve["force"][row]
+    if scale is not None:
+        _, Fadh, _, dc = scale
+        return f"{name}\n$d/|d_c|$ = {curve['d'][row] / dc:.3g}, $F/F_\\mathrm{{adh}}$ = {F / Fadh:.3g}"
+    if periodic:
+        return f"{name}\n$d$ = {curve['d'][row]:.3g}, $\\bar p$ = {F / (params['Lx'] * params['Ly']):.3g}"
+    return f"{name}\n$d$ = {curve['d'][row]:.3g}, $F$ = {F:.3g}"
+
+
+def contact_map(ax, results, state="deepest", field="auto", colorbar=True, normalised=False):
+    """The contact of one state on ``ax``: the pressure on the contact set (colour bar: p, tension
+    blue, compression red) when the file has the pressure field, else the contact set itself.
+    ``state`` is a curve row, ``"deepest"`` or ``"tension"``; the file's written state nearest to
+    it is drawn (``-adh_fields_stride``), titled by what it is (in JKR's scales with
+    ``normalised``). Returns the curve row drawn."""
+    import matplotlib
+    run = Run(results)
+    try:
+        r, c, p = run.results, run.curve, run.params
+        if "contact" not in r.field_names:
+            raise UsageError(f"--states: {run.path} has no fields to map (write them with -adh_fields contact or pressure)")
+        row = state_row(c, state)
+        row = int(r.states[np.argmin(np.abs(r.states - row))])
+        mask = r.field("contact", row) > 0
+        use_pressure = "pressure" in r.field_names if field == "auto" else field == "pressure"
+        Lx, Ly = p.get("Lx", 1.0), p.get("Ly", 1.0)
+        Ny, Nx = mask.shape
+        extent = (*_edges(Nx, Lx), *_edges(Ny, Ly))
+        window = None
+        if p.get("boundary") == "free":
+            # an isolated contact: the window around the largest contact (the deepest state's),
+            # the same for every state of the run
+            deepest = int(r.states[np.argmin(np.abs(r.states - state_row(c, "deepest")))])
+            window = _window(mask | (r.field("contact", deepest) > 0), Lx, Ly)
+        if use_pressure:
+            pressure = r.field("pressure", row)
+            vmax = float(np.max(np.abs(pressure[mask]))) if mask.any() else 1.0
+            im = ax.imshow(np.where(mask, pressure, np.nan), origin="lower", extent=extent, cmap="RdBu_r",
+                           vmin=-vmax, vmax=vmax, interpolation="nearest")
+            if colorbar:
+                bar = ax.figure.colorbar(im, ax=ax, fraction=0.046, pad=0.03)
+                bar.set_label("pressure $p$", labelpad=1)
+                bar.ax.ticklabel_format(style="sci", scilimits=(-4, 5), useMathText=True)
+        else:
+            cmap = matplotlib.colors.ListedColormap(["white", "#1f77b4"])
+            im = ax.imshow(mask.astype(float), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=1,
+                           interpolation="nearest")
+            if colorbar:
+                bar = ax.figure.colorbar(im, ax=ax, fraction=0.046, pad=0.03, ticks=[0.25, 0.75])
+                bar.ax.set_yticklabels(["free", "contact"])
+        if window:
+            ax.set_xlim(window[0], window[1])
+            ax.set_ylim(window[2], window[3])
+        ax.set_xlabel("$x$")
+        ax.set_ylabel("$y$", labelpad=1)
+        ax.set_title(_state_title(c, state, row, p.get("boundary") == "periodic", p, _scale(run, normalised)))
+        return row
+    finally:
+        run.close()
+
+
+def resolution(ax, results, compare=(), legend=True, labels=None):
+    """The share of the tension carried by contact patches under 314 elements, per state carrying
+    tension: above 0.1 at the pull-off force the grid does not resolve the adhesion."""
+    runs = _runs(results, compare, labels)
+    try:
+        colors = _colors()
+        for i, run in enumerate(runs):
+            c, prm = run.curve, run.params
+            if "small_patch_tension" not in c or not (c["force"] < 0).any():
+                continue  # nothing to resolve
+            rows = np.arange(len(c["d"]))
+            tension = c["force"] < 0
+            color = colors[i % len(colors)]
+            ax.plot(rows[tension], c["small_patch_tension"][tension], ".-", color=color,
+                    label=run.label.split(":")[0] if len(runs) > 1 else "states carrying tension")
+            k = int(np.argmin(c["force"]))
+            ac = prm.get("asperity_contact_radius")
+            verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
+            ax.plot(k, c["small_patch_tension"][k], "*", ms=7, color="red" if i == 0 else color, mec="red",
+                    label=f"pull-off force: {verdict}" + (f" ($a_c/h$ {ac:.3g})" if ac else ""))
+        ax.axhline(0.1, color="0.5", ls="--", lw=0.6, label="resolved below")
+        ax.set_ylim(-0.03, 1.03)
+        ax.set_xlabel("state (curve row)")
+        ax.set_ylabel("tension share in patches < 314 el.")
+        first = runs[0].params
+        verdict = "resolved" if first.get("adhesion_resolved") else "not resolved"
+        ac = first.get("asperity_contact_radius")
+        ax.set_title(f"adhesion {verdict}" + (f"\n($a_c/h$ = {ac:.3g})" if ac else ""))
+        if legend:
+            ax.legend(frameon=False)
+    finally:
+        _close(runs)
+
+
+def has_tension_statistics(results):
+    run = Run(results)
+    try:
+        return "small_patch_tension" in run.curve and run.curve["force"].min() < 0
+    finally:
+        run.close()
+
+
+def default_states(curve):
+    """The deepest indentation and, when a state carries tension, the largest tension."""
+    return ["deepest"] + (["tension"] if curve["force"].min() < 0 else [])
+
+
+def figure(results, states=None, compare=(), normalised=False, width="column", resolution_panel=False, labels=None):
+    """A figure for a paper: the force-indentation curve, area against force, the contact maps of
+    ``states`` (default: the deepest indentation and the largest tension, when the file has
+    fields) and, with ``resolution_panel``, the resolution of the adhesion; ``width`` "column"
+    (3.5 in, two panels a row) or "double" (7.2 in, one row). One legend above the panels; the
+    runs are named by ``labels`` (one a run) or by their files and what differs between them."""
     import matplotlib
     from matplotlib.figure import Figure
 
-    paths = [path, *compare]
-    runs = []
-    for p in paths:
-        with load(p) as r:
-            runs.append((r.curve, r.params))
-    for p, (curve, _) in zip(paths, runs):
-        if not len(curve["d"]):
-            raise ValueError(f"{p} holds no state (the run stopped before its first)")
-    params = [p for _, p in runs]
-    labels = run_labels(paths, params)
-    run_scales = [scales(p) for p in params] if normalised else [None] * len(runs)
-    if normalised:
-        for p, sc in zip(paths, run_scales):
-            if sc is None:
-                raise UsageError(f"--normalised: {p} has no scales to divide by: they are JKR's for a sphere with a "
-                                 "uniform dgamma > 0 on a free boundary, and the cell's area on a periodic cell")
-        if len({sc[0] for sc in run_scales}) > 1:
-            raise UsageError("--normalised: the runs have different scales (a JKR sphere and a periodic cell)")
-
-    c, p = runs[0]
-    with load(path) as r:
-        n = len(c["d"])
+    if width not in ("column", "double"):
+        raise UsageError(f"--width: 'column' or 'double', got {width!r}")
+    run = Run(results)
+    try:
         if states is None:
-            states = default_states(c) if "contact" in r.field_names else []
+            states = default_states(run.curve) if "contact" in run.results.field_names else []
+        elif states and "contact" not in run.results.field_names:
+            raise UsageError(f"--states: {run.path} has no fields to map (write them with -adh_fields)")
+        rows = {}
+        for s in states:  # a bad state fails before drawing; one map a row
+            rows.setdefault(state_row(run.curve, s), []).append(s)
+        states = [names[0] if len(names) == 1 else tuple(names) for names in rows.values()]
+    finally:
+        run.close()
+    panels = ["curve", "area"] + [("map", s) for s in states] + (["resolution"] if resolution_panel else [])
+    with matplotlib.rc_context(STYLE):
+        if width == "column":
+            ncols, nrows = 2, (len(panels) + 1) // 2
+            size = (COLUMN, 0.45 + 1.75 * nrows)
         else:
-            check_states(path, states, n, r.states if "contact" in r.field_names else [])
-        maps = []
-        for k in states:
-            # the written state nearest to the one asked for (-adh_fields_stride)
-            row = int(r.states[np.argmin(np.abs(r.states - (k % n)))])
-            maps.append((row, r.field("contact", row), r.field("pressure", row) if "pressure" in r.field_names else None))
-
-    # how well the grid resolves the adhesion, per state (files of adhesive runs that have it)
-    resolution = "small_patch_tension" in c and c["force"].min() < 0
-    ncols = 2 + len(maps) + resolution
-    fig = Figure(figsize=(5.2 * ncols, 4.8))
-    ax = fig.subplots(1, ncols, squeeze=False)[0]
-    colors = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
-    legend_done = (set(), set())  # (run, leg) entries each axes has in its legend
-    marked_contact_lost = False
-    names = quantities(c["d"], c["force"], c["area"], run_scales[0])[1]
-    for i, ((curve, prm), label, sc) in enumerate(zip(runs, labels, run_scales)):
-        color = colors[i % len(colors)]
-        (x, F, A), _ = quantities(curve["d"], curve["force"], curve["area"], sc)
-        by_leg = legs(curve, prm)
-        draw_curve(ax[0], x, F, by_leg, color, label, legend_done[0])
-        draw_curve(ax[1], F, A, by_leg, color, label, legend_done[1])
-        if curve["force"].min() < 0:
-            k = int(np.argmin(curve["force"]))
-            own = "" if len(runs) == 1 else f" ({label.split(':')[0]})"
-            ax[0].plot(x[k], F[k], "*", ms=13, color="red" if i == 0 else color, mec="red", zorder=5,
-                       label=f"pull-off force{own} F = {-curve['force'][k]:.4g} (largest tension)")
-        lost = np.nonzero(curve.get("pulled_off", np.zeros(0)))[0]
-        lost = [k for k in lost if curve["force"][k] >= 0]  # force control ends at the largest tension itself
-        if len(lost):
-            ax[0].plot(x[lost], F[lost], "x", ms=8, mew=1.5, color=color, zorder=5,
-                       label="_nolegend_" if marked_contact_lost else "contact lost: the leg ends")
-            marked_contact_lost = True
-    ref = analytic(p, c["d"], c["area"])
-    if ref:
-        name, rd, rF, rA = ref
-        (rx, rF, rA), _ = quantities(rd, rF, rA, run_scales[0])
-        ax[0].plot(rx, rF, "k:", lw=1.3, label=f"{name} (theory)")
-        ax[1].plot(rF, rA, "k:", lw=1.3, label=f"{name} (theory)")
-    xlabel, flabel, alabel = names
-    if p.get("control") == "force":
-        xlabel += ", force control"
-    ax[0].set_xlabel(xlabel)
-    ax[0].set_ylabel(flabel)
-    ax[1].set_xlabel(flabel)
-    ax[1].set_ylabel(alabel)
-    for a in ax[:2]:
-        a.axhline(0, color="0.7", lw=0.5)
-        a.ticklabel_format(style="sci", scilimits=(-3, 4))  # mean pressures of 1e-3 E* stay legible
-        a.legend(fontsize=8)
-    if run_scales[0] and run_scales[0][0] == "jkr":
-        _, Fadh, ac, dc = run_scales[0]
-        ax[0].set_title(f"JKR scales: F_adh = 1.5 pi dgamma R = {Fadh:.4g}, a_c = {ac:.4g}, |d_c| = {dc:.4g}", fontsize=8)
-
-    Lx, Ly = p.get("Lx", 1.0), p.get("Ly", 1.0)
-    d, F = c["d"], c["force"]
-    for a, (row, mask, pressure) in zip(ax[2:], maps):
-        extent = (-Lx / 2, Lx / 2, -Ly / 2, Ly / 2)
-        if pressure is not None:
-            vmax = np.max(np.abs(pressure)) or 1.0
-            im = a.imshow(np.where(mask > 0, pressure, np.nan), origin="lower", extent=extent, cmap="RdBu_r",
-                          vmin=-vmax, vmax=vmax, interpolation="nearest")
-            fig.colorbar(im, ax=a, shrink=0.8, label="pressure p on the contact (units of E*)")
-        else:
-            a.imshow(mask, origin="lower", extent=extent, cmap="Greys", interpolation="nearest")
-        a.set_xlabel(f"x ({LENGTH})")
-        a.set_ylabel(f"y ({LENGTH})")
-        a.set_title(f"state {row}: d = {d[row]:.4g}, F = {F[row]:.4g}", fontsize=10)
-    if resolution:
-        draw_resolution(ax[-1], runs, labels, colors)
-    attach = f", attach {p['attach']}" if "attach" in p else ""
-    fig.suptitle(f"{path}: {p.get('indenter')} indenter, {p.get('boundary')} boundary, {p.get('Nx')} x {p.get('Ny')},"
-                 f" {adhesion_label(p)}, {p.get('criterion', 'pohrt-popov')}{attach}"
-                 + ("" if p.get("complete", 1) else " (incomplete run)"), fontsize=10)
-    fig.text(0.005, 0.005, UNITS_NOTE, fontsize=7, color="0.4", ha="left", va="bottom")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
+            ncols, nrows = len(panels), 1
+            size = (DOUBLE, 0.45 + 2.0)
+        fig = Figure(figsize=size)
+        axes = fig.subplots(nrows, ncols, squeeze=False).ravel()
+        for ax in axes[len(panels):]:
+            ax.set_visible(False)
+        for ax, panel in zip(axes, panels):
+            if panel == "curve":
+                curve(ax, results, compare, normalised, legend=False, labels=labels)
+            elif panel == "area":
+                area(ax, results, compare, normalised, legend=False, labels=labels)
+            elif panel == "resolution":
+                resolution(ax, results, compare, legend=False, labels=labels)
+            else:
+                contact_map(ax, results, panel[1], normalised=normalised)
+        handles, labels = axes[0].get_legend_handles_labels()
+        h2, l2 = axes[1].get_legend_handles_labels()
+        for h, l in zip(h2 + getattr(axes[0], "_adhbem_styles", []), l2 + [h.get_label() for h in getattr(axes[0], "_adhbem_styles", [])]):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+        ncol = min(len(labels), 2 if width == "column" else 4)
+        top = 1 - (0.06 + 0.13 * math.ceil(len(labels) / ncol)) / size[1]
+        fig.legend(handles, labels, loc="upper center", ncol=ncol, frameon=False, bbox_to_anchor=(0.5, 1.0),
+                   handlelength=2.2, columnspacing=1.0)
+        fig.tight_layout(pad=0.3, h_pad=0.6, w_pad=0.6, rect=(0, 0, 1, top))
     return fig
 
 
-def draw_resolution(a, runs, labels, colors):
-    """The share of the tension carried by contact patches under 314 elements, per state: above 0.1
-    at the pull-off force the grid does not resolve the adhesion."""
-    for i, ((curve, prm), label) in enumerate(zip(runs, labels)):
-        if "small_patch_tension" not in curve:
-            continue
-        rows = np.arange(len(curve["d"]))
-        tension = curve["force"] < 0
-        if not tension.any():
-            continue  # a run without tension (no adhesion) has nothing to resolve
-        a.plot(rows[tension], curve["small_patch_tension"][tension], ".-", ms=4, color=colors[i % len(colors)],
-               label=label.split(":")[0] if len(runs) > 1 else "states carrying tension")
-        k = int(np.argmin(curve["force"]))
-        ac = prm.get("asperity_contact_radius")
-        verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
-        a.plot(k, curve["small_patch_tension"][k], "*", ms=13, color="red" if i == 0 else colors[i % len(colors)],
-               mec="red", label=f"pull-off force: {verdict}" + (f" (asperity a_c/h {ac:.3g})" if ac else ""))
-    a.axhline(0.1, color="0.5", ls="--", lw=0.8, label="resolved at most")
-    a.set_ylim(-0.03, 1.03)
-    a.set_xlabel("state (curve row)")
-    a.set_ylabel("share of the tension in patches < 314 elements")
-    a.set_title("resolution of the adhesion", fontsize=10)
-    a.legend(fontsize=8)
-
-
-def plot(path, out=None, states=None, compare=(), normalised=False):
-    """Draws figure(path, ...) into out (default: FILE.png beside FILE.h5) and returns out."""
-    out = out or (path[:-3] if path.endswith(".h5") else path) + ".png"
-    figure(path, states, compare, normalised).savefig(out, dpi=110)
+def plot(path, out=None, states=None, compare=(), normalised=False, width="column", resolution_panel=False, labels=None):
+    """Draws figure(path, ...) into out (default: FILE.png beside FILE.h5; .pdf or .svg give vector
+    files) and returns out."""
+    out = os.fspath(out) if out else (path[:-3] if str(path).endswith(".h5") else str(path)) + ".png"
+    figure(path, states, compare, normalised, width, resolution_panel, labels).savefig(out, dpi=STYLE["savefig.dpi"])
     return out
+
+
+def _state(text):
+    return text if text in STATE_NAMES else int(text)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python3 -m adhbem.plot", description=__doc__.split("\n\n")[0])
     ap.add_argument("file", help="results file written with -adh_output")
-    ap.add_argument("--out", help="image file (default: FILE.png)")
-    ap.add_argument("--states", help="curve rows of the contact maps, comma-separated, negative from the end "
-                    "(default: largest load and largest tension)")
+    ap.add_argument("--out", help="figure file, PNG, PDF or SVG by its extension (default: FILE.png)")
+    ap.add_argument("--width", default="column", choices=("column", "double"),
+                    help="a journal column (3.5 in, the default) or the page (7.2 in)")
+    ap.add_argument("--states", help="contact maps: comma-separated curve rows (negative from the end), 'deepest' "
+                    "or 'tension' (default: deepest,tension)")
     ap.add_argument("--compare", nargs="*", default=(), help="other results files whose curves go beside")
-    ap.add_argument("--normalised", action="store_true",
-                    help="JKR sphere on a free boundary: F/F_adh, a/a_c, d/|d_c|; periodic cell: mean pressure and "
-                    "contact area fraction")
+    ap.add_argument("--normalised", action="store_true", help="a JKR sphere on a free boundary in F/F_adh, a/a_c, d/|d_c|")
+    ap.add_argument("--resolution", action="store_true", help="add the panel of the resolution of the adhesion")
     a = ap.parse_args(argv)
     try:
-        states = [int(s) for s in a.states.split(",")] if a.states else None
+        states = [_state(s) for s in a.states.split(",")] if a.states else None
     except ValueError:
-        ap.error(f"--states: comma-separated integers, got {a.states!r}")
+        ap.error(f"--states: curve rows, 'deepest' or 'tension', comma-separated; got {a.states!r}")
     try:
-        out = plot(a.file, a.out, states, a.compare, a.normalised)
+        out = plot(a.file, a.out, states, a.compare, a.normalised, a.width, a.resolution)
     except UsageError as e:
         ap.error(str(e))
     except (OSError, KeyError, ValueError) as e:

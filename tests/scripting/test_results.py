@@ -136,10 +136,11 @@ def test_load_and_plot_without_petsc4py(tmp_path):
     assert r.returncode == 0 and r.stdout.strip() == "[]", r.stdout + r.stderr[-2000:]
 
 
-# ---- the figure: labels, legs, markers, units, normalised axes, bad options ---------------------
+# ---- the figure: labels, legs, markers, sizes, normalised axes, bad options ----------------------
 
-def legend(ax):
-    return [t.get_text() for t in ax.get_legend().get_texts()]
+def legend(fig):
+    """The entries of the figure's legend (figure() draws one, above its panels)."""
+    return [t.get_text() for t in fig.legends[0].get_texts()]
 
 
 def line(ax, label):
@@ -157,12 +158,12 @@ def test_compare_labels_say_what_differs(tmp_path):
     a = run(tmp_path, "a", JKR + paper, fields=False)
     b = run(tmp_path, "b", JKR + ["-adh_criterion", "crack-closure"], fields=False)
     c = run(tmp_path, "c", ["-adh_indenter", "sphere", "-adh_gamma", "2e-3", "-adh_path", "0,0.02,-0.03"] + paper, fields=False)
-    fig = figure(str(a), compare=[str(b), str(c)])
-    names = legend(fig.axes[0])
+    names = legend(figure(str(a), compare=[str(b), str(c)]))
     # the attach rule differs too: each criterion's default (reach with the paper's, griffith)
-    assert "a: dgamma = 0.001, pohrt-popov, attach reach, approach" in names
-    assert "b: dgamma = 0.001, crack-closure (radius 16-64), attach griffith, retraction" in names
-    assert "c: dgamma = 0.002, pohrt-popov, attach reach, approach" in names
+    assert "a: dgamma = 0.001, pohrt-popov, attach reach" in names
+    assert "b: dgamma = 0.001, crack-closure (radius 16-64), attach griffith" in names
+    assert "c: dgamma = 0.002, pohrt-popov, attach reach" in names
+    assert "approach" in names and "retraction" in names  # the legs' line styles, once
     # what is the same (grid, boundary, control) is not repeated; the attach rule when files have it
     assert not any("N = 32" in n or "boundary" in n for n in names)
     import h5py
@@ -171,10 +172,12 @@ def test_compare_labels_say_what_differs(tmp_path):
     with h5py.File(a, "r+") as f:
         f.attrs["attach"] = "penetration"
     d = run(tmp_path, "d", JKR + paper + ["-adh_n", "24"], fields=False)
-    names = legend(figure(str(a), compare=[str(b), str(d)]).axes[0])
-    assert "a: pohrt-popov, attach penetration, N = 32, approach" in names
-    assert "b: crack-closure (radius 16-64), attach reach, N = 32, approach" in names
-    assert "d: pohrt-popov, attach reach, N = 24, approach" in names
+    names = legend(figure(str(a), compare=[str(b), str(d)]))
+    assert "a: pohrt-popov, attach penetration, N = 32" in names
+    assert "b: crack-closure (radius 16-64), attach reach, N = 32" in names
+    assert "d: pohrt-popov, attach reach, N = 24" in names
+    names = legend(figure(str(a), compare=[str(b)], labels=["paper", "ours"]))
+    assert "paper" in names and "ours" in names
 
 
 def test_a_gamma_field_is_labelled_as_one(tmp_path):
@@ -182,40 +185,94 @@ def test_a_gamma_field_is_labelled_as_one(tmp_path):
     g = tmp_path / "stripes.npy"
     np.save(g, np.where(np.arange(32)[None, :] < 16, 2e-3, 5e-4) * np.ones((32, 1)))
     out = run(tmp_path, "field", ["-adh_indenter", "sphere", "-adh_gamma_field", str(g), "-adh_path", "0,0.02,-0.03"], fields=False)
-    fig = figure(str(out))
-    names = legend(fig.axes[0])
-    assert "adhbem, dgamma field stripes.npy, approach" in names
-    assert not any("no adhesion" in n or "Hertz" in n or "JKR" in n for n in names)  # no theory for a field
-    assert "dgamma field" in fig._suptitle.get_text()
+    from adhbem.plot import run_labels
+    with adhbem.load(out) as r:
+        assert run_labels([str(out)], [r.params]) == ["dgamma field stripes.npy"]
+    names = legend(figure(str(out)))
+    assert not any("Hertz" in n or "JKR" in n for n in names)  # no theory for a field
 
 
 def test_approach_and_retraction_and_the_pull_off_marker(tmp_path):
     serial_only()
-    out = run(tmp_path, "jkr", JKR)
+    # from before first touch, and a last leg after the contact was lost: states with nothing in contact
+    out = run(tmp_path, "jkr", ["-adh_indenter", "sphere", "-adh_gamma", "1e-3", "-adh_path", "-0.02,0.02,-0.03,-0.04"])
     fig = figure(str(out))
     with adhbem.load(out) as r:
-        d, F = r.curve["d"], r.curve["force"]
+        d, F, points = r.curve["d"], r.curve["force"], r.curve["contact_points"]
         pulled = int(np.nonzero(r.curve["pulled_off"])[0][0])
     ax = fig.axes[0]
-    up, down = line(ax, "adhbem, dgamma = 0.001, approach"), line(ax, "adhbem, dgamma = 0.001, retraction")
+    up, down = line(ax, "approach"), line(ax, "retraction")
     assert np.all(np.diff(up.get_xdata()) > 0) and np.all(np.diff(down.get_xdata()) < 0)
     assert up.get_linestyle() != down.get_linestyle()
-    assert len(up.get_xdata()) + len(down.get_xdata()) == len(d) + 1  # they share the turning point
-    star = line(ax, f"pull-off force F = {-F.min():.4g} (largest tension)")
+    # every state in contact is drawn, and of those with nothing in contact only the neighbours of one
+    drawn = len(up.get_xdata()) + len(down.get_xdata()) - 1  # they share the turning point
+    touching = points > 0
+    near = touching.copy()
+    near[1:] |= touching[:-1]
+    near[:-1] |= touching[1:]
+    assert drawn == near.sum() and near.sum() < len(d)  # the retraction's empty states are left out
+    assert np.count_nonzero(down.get_ydata() == 0) == 1  # but the one where the contact was lost
+    star = line(ax, f"pull-off force {-F.min():.3g}")
     assert star.get_ydata()[0] == F.min() and star.get_color() == "red"
-    lost = line(ax, "contact lost: the leg ends")
+    lost = line(ax, "contact lost")
     assert lost.get_xdata()[0] == d[pulled]
-    assert "JKR (theory)" in legend(ax)
-    assert set(legend(fig.axes[1])) >= {"adhbem, dgamma = 0.001, approach", "adhbem, dgamma = 0.001, retraction"}
+    theory = line(ax, "JKR theory")
+    # the theory over the data's range only
+    assert theory.get_xdata().min() >= min(up.get_xdata().min(), down.get_xdata().min())
+    assert theory.get_xdata().max() <= max(up.get_xdata().max(), down.get_xdata().max())
+    assert {"approach", "retraction", "JKR theory", "contact lost"} <= set(legend(fig))
 
 
-def test_units_are_stated(tmp_path):
+def test_labels_titles_and_size_for_a_paper(tmp_path):
+    """Column width 3.5 in, page width 7.2 in; symbols on the axes, no units text, no file path
+    anywhere; contact maps titled by what the state is, with a colour bar; PDF and SVG by the
+    extension of --out."""
     serial_only()
-    fig = figure(str(run(tmp_path, "jkr", JKR)))
-    labels = [fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel(), fig.axes[1].get_ylabel()]
-    assert labels == ["indentation d (input length unit)", "force F (input units: E* x length^2)",
-                      "contact area A (input length unit^2)"]
-    assert any("any consistent set" in t.get_text() for t in fig.texts)
+    out = run(tmp_path, "jkr", JKR)
+    fig = figure(str(out))
+    assert tuple(fig.get_size_inches())[0] == 3.5
+    labels = [fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel(), fig.axes[1].get_xlabel(), fig.axes[1].get_ylabel()]
+    assert labels == ["indentation $d$", "force $F$", "force $F$", "contact area $A$"]
+    maps = [a for a in fig.axes if a.get_title()]
+    titles = [a.get_title() for a in maps]
+    assert titles[0].startswith("deepest indentation\n$d$ = 0.02") and titles[1].startswith("largest tension\n")
+    assert sum(1 for a in fig.axes if a.get_label() == "<colorbar>") == 2
+    texts = [t.get_text() for a in fig.axes for t in a.texts] + [fig._suptitle.get_text() if fig._suptitle else ""]
+    texts += titles + legend(fig) + labels
+    assert not any(str(tmp_path) in t or "jkr.h5" in t or "input units" in t for t in texts), texts
+    wide = figure(str(out), width="double")
+    assert tuple(wide.get_size_inches())[0] == 7.2 and len([a for a in wide.axes if a.get_visible()]) == 6  # 4 panels, 2 bars
+    for ext, magic in ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG")):
+        target = tmp_path / f"fig{ext}"
+        assert plot_main([str(out), "--out", str(target)]) == 0
+        assert target.read_bytes()[:len(magic)] == magic
+    from PIL import Image
+    with Image.open(tmp_path / "fig.png") as im:
+        assert im.size[0] == 1050  # 3.5 in at 300 dpi
+    assert plot_main([str(out), "--width", "double", "--out", str(tmp_path / "w.png")]) == 0
+    with Image.open(tmp_path / "w.png") as im:
+        assert im.size[0] == 2160
+
+
+def test_panels_draw_on_the_users_axes(tmp_path):
+    """One function a panel, on axes of the user's own figure."""
+    serial_only()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from adhbem import plot as P
+    out = run(tmp_path, "rough", CASES["rough"])
+    fig, ax = plt.subplots(2, 2)
+    P.curve(ax[0, 0], str(out))
+    with adhbem.load(out) as r:
+        P.area(ax[0, 1], r)  # a loaded file works as well as a name
+        row = P.contact_map(ax[1, 0], r, "tension")
+        assert row == int(np.argmin(r.curve["force"]))
+    P.resolution(ax[1, 1], str(out))
+    assert ax[0, 0].get_ylabel() == "mean pressure $\\bar p$" and ax[0, 1].get_ylabel() == "contact area fraction"
+    assert ax[1, 0].get_title().startswith("largest tension\n")
+    assert ax[0, 0].get_legend() is not None
+    plt.close(fig)
 
 
 def test_normalised_jkr_sphere(tmp_path):
@@ -223,38 +280,40 @@ def test_normalised_jkr_sphere(tmp_path):
     out = run(tmp_path, "jkr", JKR)
     fig = figure(str(out), normalised=True)
     ax = fig.axes[0]
-    assert (ax.get_xlabel(), ax.get_ylabel()) == ("indentation d / |d_c|", "force F / F_adh")
-    assert fig.axes[1].get_ylabel().startswith("contact radius a / a_c")
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("indentation $d/|d_c|$", "force $F/F_\\mathrm{adh}$")
+    assert fig.axes[1].get_ylabel() == "contact radius $a/a_c$"
     gamma, R, E = 1e-3, 1.0, 1.0
     Fadh, ac = 1.5 * np.pi * gamma * R, (9 * np.pi * gamma * R ** 2 / (8 * E)) ** (1 / 3)
     dc = (3 * np.pi ** 2 * gamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
     with adhbem.load(out) as r:
         c = r.curve
-    up = line(ax, "adhbem, dgamma = 0.001, approach")
+    up = line(ax, "approach")
     k = len(up.get_xdata())
     assert np.allclose(up.get_xdata(), c["d"][:k] / dc, rtol=1e-12) and np.allclose(up.get_ydata(), c["force"][:k] / Fadh, rtol=1e-12)
-    area = line(fig.axes[1], "adhbem, dgamma = 0.001, approach")
+    area = line(fig.axes[1], "approach")
     assert np.allclose(area.get_ydata(), np.sqrt(c["area"][:k] / np.pi) / ac, rtol=1e-12)
-    theory = line(ax, "JKR (theory)")
-    assert abs(theory.get_ydata().min() + 1) < 1e-3  # JKR pulls off at F_adh
     star = [ln for ln in ax.get_lines() if ln.get_label().startswith("pull-off force")][0]
     assert star.get_ydata()[0] == c["force"].min() / Fadh
+    # the annotations are normalised too, not dimensional
+    assert star.get_label() == f"pull-off force {-c['force'].min() / Fadh:.3g} $F_\\mathrm{{adh}}$"
+    titles = [a.get_title() for a in fig.axes if a.get_title()]
+    assert titles and all("$d/|d_c|$ = " in t and "F_\\mathrm{adh}$ = " in t for t in titles), titles
 
 
-def test_normalised_periodic_cell(tmp_path):
+def test_periodic_cell_in_mean_pressure_and_area_fraction(tmp_path):
     serial_only()
     out = run(tmp_path, "rough", CASES["rough"])
-    fig = figure(str(out), normalised=True)
+    fig = figure(str(out))
     with adhbem.load(out) as r:
-        c, cell = r.curve, r.params["Nx"] * r.params["hx"] * r.params["Ny"] * r.params["hy"]
+        c, cell = r.curve, r.params["Lx"] * r.params["Ly"]
     assert cell == 32 * 32
     ax = fig.axes[0]
-    assert ax.get_ylabel() == "mean pressure F / (Lx Ly) (units of E*)"
-    assert fig.axes[1].get_ylabel() == "contact area fraction A / (Lx Ly)"
-    up = line(ax, "adhbem, dgamma = 0.004, approach")
+    assert ax.get_ylabel() == "mean pressure $\\bar p$"
+    assert fig.axes[1].get_ylabel() == "contact area fraction"
+    up = line(ax, "approach")
     k = len(up.get_ydata())
     assert np.array_equal(up.get_ydata(), c["force"][:k] / cell)
-    area = line(fig.axes[1], "adhbem, dgamma = 0.004, approach")
+    area = line(fig.axes[1], "approach")
     assert np.array_equal(area.get_ydata(), c["area"][:k] / cell) and area.get_ydata().max() <= 1
 
 
@@ -268,7 +327,10 @@ def test_bad_states_and_normalised_are_errors(tmp_path, capsys):
             plot_main([str(out), "--states", states, "--out", str(tmp_path / "x.png")])
         err = capsys.readouterr().err
         assert e.value.code == 2 and "--states" in err and f"rows 0 to {n - 1}" in err, err
-    assert plot_main([str(out), "--states", f"0,-1,{n - 1}", "--out", str(tmp_path / "x.png")]) == 0
+    assert plot_main([str(out), "--states", f"0,-1,{n - 1},deepest,tension", "--out", str(tmp_path / "x.png")]) == 0
+    with pytest.raises(SystemExit):
+        plot_main([str(out), "--states", "shallowest"])
+    assert "'deepest' or 'tension'" in capsys.readouterr().err
     nofields = run(tmp_path, "nofields", JKR, fields=False)
     with pytest.raises(SystemExit):
         plot_main([str(nofields), "--states", "0"])
@@ -283,14 +345,12 @@ def test_bad_states_and_normalised_are_errors(tmp_path, capsys):
 
 
 def test_resolution_panel(tmp_path):
-    """An adhesive run's figure ends with the resolution panel: the share of the tension in small
-    patches per state, the pull-off state marked with the run's verdict."""
+    """--resolution adds the panel: the share of the tension in small patches per state, the
+    pull-off state marked, the run's verdict as its title."""
     serial_only()
     rough = run(tmp_path, "rough", CASES["rough"], fields=False)
-    fig = figure(str(rough))
-    a = fig.axes[-1]
-    names = legend(a)
-    assert a.get_title() == "resolution of the adhesion"
-    assert any(n.startswith("pull-off force: not resolved (asperity a_c/h") for n in names), names
-    hertz = run(tmp_path, "hertz", CASES["hertz"], fields=False)
-    assert all(ax.get_title() != "resolution of the adhesion" for ax in figure(str(hertz)).axes)
+    fig = figure(str(rough), resolution_panel=True)
+    a = [ax for ax in fig.axes if ax.get_visible()][-1]
+    assert a.get_title().startswith("adhesion not resolved\n($a_c/h$ = ")
+    assert any(ln.get_label().startswith("pull-off force: not resolved") for ln in a.get_lines())
+    assert not any(ax.get_title().startswith("adhesion") for ax in figure(str(rough)).axes)

@@ -174,7 +174,7 @@ typedef struct {
   PetscReal area_tension, area_compression; /* area of the set carrying p < 0, and p > 0 */
   PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
   PetscInt  fft_pairs;               /* forward+backward FFT pairs of the step: compliance and preconditioner */
-  PetscReal detach_ratio;            /* the detachment criterion's largest load over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
+  PetscReal detach_ratio;            /* the detachment criterion's largest demand over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch carrying a net tension (0: none) */
   PetscReal small_patch_tension;     /* share of the set's tension (the sum of its p < 0) carried by patches of fewer than ADH_RESOLVED_PATCH points */
 } AdhState;

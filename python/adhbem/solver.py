@@ -510,7 +510,7 @@ class Solver:
           forward+backward FFT pairs, wall time);
         - ``patches``: connected clusters of the contact set; ``mean_gap``: the gap's mean;
         - ``max_tension_ratio``: the largest tension over Sigma; ``detach_ratio``: the
-          criterion's largest load over its limit (1: a point is about to let go);
+          criterion's largest demand over its limit (1: a point is about to let go);
         - ``area_tension``, ``area_compression``: contact area carrying p < 0 and p > 0;
         - ``pulled_off``: 1 on the state where the contact was lost (the leg ends there);
         - ``smallest_tensile_patch``, ``small_patch_tension``: the smallest patch with a net

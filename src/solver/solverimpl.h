@@ -27,7 +27,7 @@ typedef struct {
 typedef enum { ADH_DETACH_IN_DOUBT, ADH_DETACH_NONE, ADH_DETACH_SOME } AdhDetachDecision;
 
 /* What a detachment criterion does (impls/criterion/): evaluate the current state, removing the points
-   that let go (detach) or giving the largest load over its limit on the set (ratio). */
+   that let go (detach) or giving the largest demand over its limit on the set (ratio). */
 typedef struct {
   PetscErrorCode (*setup)(AdhSolver); /* at the solver's set-up: what the criterion needs on the grid */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);

@@ -75,7 +75,7 @@ PetscErrorCode AdhSolverDetach_Private(AdhSolver s, PetscInt *removed)
   PetscFunctionReturn(0);
 }
 
-/* How close the current state is to letting go: the criterion's largest load over its limit on
+/* How close the current state is to letting go: the criterion's largest demand over its limit on
    the set (1: a point is about to let go). */
 PetscErrorCode AdhSolverDetachRatio_Private(AdhSolver s, PetscReal *ratio)
 {

@@ -105,3 +105,15 @@ def assembled(K):
         e[k] = 1.0
         M[:, k] = apply(K, e.reshape(Ny, Nx)).ravel()
     return M
+
+
+class FakeSurfaceTopography:
+    """What adhbem uses of a SurfaceTopography 2-D topography: heights() as (nx, ny), x first."""
+    dim = 2
+
+    def __init__(self, heights_xy, sizes, periodic):
+        self._h, self.physical_sizes, self.is_periodic = heights_xy, sizes, periodic
+        self.nb_grid_pts = heights_xy.shape
+
+    def heights(self):
+        return self._h

@@ -14,29 +14,37 @@
    exception's petsc_error_code. A handler of ours sits on PETSc's stack while libadhbem runs, to
    catch that message. -adh_traceback (an option in PETSc's database: `python job.py -adh_traceback`)
    prints PETSc's traceback of every frame as well, as it does for the executable. */
-static char           ErrorText[1024];
+/* The messages of the errors raised since the outermost call began: the one whose code the call
+   returns is the one to tell (a later error in a clean-up on the way out does not replace it). */
+#define ADH_ERRORS 8
+static char           ErrorTexts[ADH_ERRORS][1024];
+static PetscErrorCode ErrorCodes[ADH_ERRORS];
+static int            ErrorCount, CatchDepth;
+static char           ErrorText[1024]; /* the one chosen */
 static PetscErrorCode ErrorCode;
 
 static PetscErrorCode CatchError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   if (p == PETSC_ERROR_INITIAL) {
-    ErrorCode = n;
-    if (mess && mess[0]) snprintf(ErrorText, sizeof(ErrorText), "%s", mess);
+    const int k   = ErrorCount < ADH_ERRORS ? ErrorCount++ : ADH_ERRORS - 1;
+    ErrorCodes[k] = n;
+    if (mess && mess[0]) snprintf(ErrorTexts[k], sizeof(ErrorTexts[k]), "%s", mess);
     else {
       const char *text = NULL;
       (void)PetscErrorMessage(n, &text, NULL);
-      snprintf(ErrorText, sizeof(ErrorText), "%s (in %s() at %s:%d)", text ? text : "unknown error", fun ? fun : "?", file ? file : "?", line);
+      snprintf(ErrorTexts[k], sizeof(ErrorTexts[k]), "%s (in %s() at %s:%d)", text ? text : "unknown error", fun ? fun : "?", file ? file : "?", line);
     }
   }
   if (ctx) return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, NULL);
   return n;
 }
 
+/* Calls nest (a Python monitor that calls back into the extension): only the outermost starts
+   the record. */
 static void CatchErrorsBegin(void)
 {
   PetscBool traceback = PETSC_FALSE;
-  ErrorText[0] = 0;
-  ErrorCode    = 0;
+  if (CatchDepth++ == 0) ErrorCount = 0;
   (void)PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL);
   (void)PetscPushErrorHandler(CatchError, traceback ? (void *)1 : NULL);
 }
@@ -44,6 +52,23 @@ static void CatchErrorsBegin(void)
 static void CatchErrorsEnd(void)
 {
   (void)PetscPopErrorHandler();
+  CatchDepth--;
+}
+
+/* The message to tell for a call that returned n: the last error raised with that code, else the
+   last one raised. */
+static void ChooseError(PetscErrorCode n)
+{
+  int k = ErrorCount - 1;
+  while (k >= 0 && ErrorCodes[k] != n) k--;
+  if (k < 0) k = ErrorCount - 1;
+  ErrorText[0] = 0;
+  ErrorCode    = 0;
+  if (k >= 0) {
+    snprintf(ErrorText, sizeof(ErrorText), "%s", ErrorTexts[k]);
+    ErrorCode = ErrorCodes[k];
+  }
+  if (!CatchDepth) ErrorCount = 0;
 }
 
 static PyObject *PythonExceptionType(PetscErrorCode n)
@@ -90,6 +115,7 @@ static void StripSolverPrefix(char *text)
 static void SetPythonError(PetscErrorCode n)
 {
   PyObject *type, *value, *tb, *code;
+  ChooseError(n);
   if (PyErr_Occurred()) return;
   if (!ErrorText[0]) {
     const char *text = NULL;

@@ -233,7 +233,10 @@ def _draw_legs(ax, x, y, run, color, many):
         label = (run.label if not done else "_nolegend_") if many else (kind if kind not in done else "_nolegend_")
         done.add(kind)
         style = dict(ls="-", marker="o", mfc=color) if direction > 0 else dict(ls="--", marker="v", mfc="white")
-        ax.plot(x[rows], y[rows], color=color, mec=color, label=label, **style)
+        # a gap in the rows (states left out) breaks the line
+        for piece in np.split(rows, np.nonzero(np.diff(rows) > 1)[0] + 1):
+            ax.plot(x[piece], y[piece], color=color, mec=color, label=label, **style)
+            label = "_nolegend_"
 
 
 def _leg_styles(ax):
@@ -280,12 +283,12 @@ def curve(ax, results, compare=(), normalised=False, theory=True, legend=True, l
                 if sc:
                     value = f"{-y[k]:.3g} $F_\\mathrm{{adh}}$"
                 elif run.params.get("boundary") == "periodic":
-                    value = f"($\\bar p$ = {y[k]:.3g})"
+                    value = f"(mean tension {-y[k]:.3g})"
                 else:
                     value = f"{-y[k]:.3g}"
                 ax.plot(x[k], y[k], "*", ms=7, color="red" if i == 0 else color, mec="red", zorder=5,
                         label=f"pull-off force {value}")
-            lost = [k for k in np.nonzero(c.get("pulled_off", np.zeros(0)))[0] if c["force"][k] >= 0]
+            lost = list(np.nonzero(c.get("pulled_off", np.zeros(0)))[0])
             if lost:
                 ax.plot(x[lost], y[lost], "x", ms=5, mew=1.0, color=color, zorder=5,
                         label="_nolegend_" if lost_drawn else "contact lost")
@@ -294,7 +297,8 @@ def curve(ax, results, compare=(), normalised=False, theory=True, legend=True, l
         if ref:
             name, rd, rF, rA = ref
             (rx, ry, _), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
-            lo, hi = min(v.min() for v in xs), max(v.max() for v in xs)
+            drawn = np.concatenate(xs)
+            lo, hi = (drawn.min(), drawn.max()) if len(drawn) else (rx.min(), rx.max())
             keep = (rx >= lo) & (rx <= hi)  # theory over the data's range only
             ax.plot(rx[keep], ry[keep], "k:", lw=1.0, label=f"{name} theory")
         ax.set_xlabel(names[0] + (", force control" if runs[0].params.get("control") == "force" else ""))
@@ -322,7 +326,8 @@ def area(ax, results, compare=(), normalised=False, theory=True, legend=True, la
         if ref:
             name, rd, rF, rA = ref
             (_, ry, rA), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
-            lo, hi = min(v.min() for v in ys), max(v.max() for v in ys)
+            drawn = np.concatenate(ys)
+            lo, hi = (drawn.min(), drawn.max()) if len(drawn) else (ry.min(), ry.max())
             keep = (ry >= lo) & (ry <= hi)
             ax.plot(ry[keep], rA[keep], "k:", lw=1.0, label=f"{name} theory")
         ax.set_xlabel(names[1])
@@ -372,9 +377,11 @@ def _window(mask, Lx, Ly):
     return (max(cx - half, x0), min(cx + half, x1), max(cy - half, y0), min(cy + half, y1))
 
 
-def _state_title(curve, state, row, periodic, params, scale=None):
+def _state_title(curve, state, row, periodic, params, scale=None, wanted=None):
     names = state if isinstance(state, tuple) else (state,)
     name = ", ".join(STATE_NAMES.get(s, f"state {row}") for s in names)
+    if wanted is not None and wanted != row:  # fields of every K-th state only: the nearest written
+        name = f"state {row}, the written one nearest the {name}" if name != f"state {row}" else f"state {row}"
     F = curve["force"][row]
     if scale is not None:
         _, Fadh, _, dc = scale
@@ -382,6 +389,11 @@ def _state_title(curve, state, row, periodic, params, scale=None):
     if periodic:
         return f"{name}\n$d$ = {curve['d'][row]:.3g}, $\\bar p$ = {F / (params['Lx'] * params['Ly']):.3g}"
     return f"{name}\n$d$ = {curve['d'][row]:.3g}, $F$ = {F:.3g}"
+
+
+def _written(results, row):
+    """The curve row nearest to row whose fields the file holds (-adh_fields_stride)."""
+    return int(results.states[np.argmin(np.abs(results.states - row))])
 
 
 def contact_map(ax, results, state="deepest", field="auto", colorbar=True, normalised=False):
@@ -396,8 +408,8 @@ def contact_map(ax, results, state="deepest", field="auto", colorbar=True, norma
         r, c, p = run.results, run.curve, run.params
         if "contact" not in r.field_names:
             raise UsageError(f"--states: {run.path} has no fields to map (write them with -adh_fields contact or pressure)")
-        row = state_row(c, state)
-        row = int(r.states[np.argmin(np.abs(r.states - row))])
+        wanted = state_row(c, state)
+        row = _written(r, wanted)
         mask = r.field("contact", row) > 0
         use_pressure = "pressure" in r.field_names if field == "auto" else field == "pressure"
         Lx, Ly = p.get("Lx", 1.0), p.get("Ly", 1.0)
@@ -407,7 +419,7 @@ def contact_map(ax, results, state="deepest", field="auto", colorbar=True, norma
         if p.get("boundary") == "free":
             # an isolated contact: the window around the largest contact (the deepest state's),
             # the same for every state of the run
-            deepest = int(r.states[np.argmin(np.abs(r.states - state_row(c, "deepest")))])
+            deepest = _written(r, state_row(c, "deepest"))
             window = _window(mask | (r.field("contact", deepest) > 0), Lx, Ly)
         if use_pressure:
             pressure = r.field("pressure", row)
@@ -430,7 +442,7 @@ def contact_map(ax, results, state="deepest", field="auto", colorbar=True, norma
             ax.set_ylim(window[2], window[3])
         ax.set_xlabel("$x$")
         ax.set_ylabel("$y$", labelpad=1)
-        ax.set_title(_state_title(c, state, row, p.get("boundary") == "periodic", p, _scale(run, normalised)))
+        ax.set_title(_state_title(c, state, row, p.get("boundary") == "periodic", p, _scale(run, normalised), wanted))
         return row
     finally:
         run.close()
@@ -501,8 +513,9 @@ def figure(results, states=None, compare=(), normalised=False, width="column", r
         elif states and "contact" not in run.results.field_names:
             raise UsageError(f"--states: {run.path} has no fields to map (write them with -adh_fields)")
         rows = {}
-        for s in states:  # a bad state fails before drawing; one map a row
-            rows.setdefault(state_row(run.curve, s), []).append(s)
+        for s in states:  # a bad state fails before drawing; one map a state drawn
+            row = state_row(run.curve, s)
+            rows.setdefault(_written(run.results, row) if len(run.results.states) else row, []).append(s)
         states = [names[0] if len(names) == 1 else tuple(names) for names in rows.values()]
     finally:
         run.close()
@@ -533,10 +546,11 @@ def figure(results, states=None, compare=(), normalised=False, width="column", r
             if l not in labels:
                 handles.append(h)
                 labels.append(l)
-        ncol = min(len(labels), 2 if width == "column" else 4)
+        ncol = max(1, min(len(labels), 2 if width == "column" else 4))
         top = 1 - (0.06 + 0.13 * math.ceil(len(labels) / ncol)) / size[1]
-        fig.legend(handles, labels, loc="upper center", ncol=ncol, frameon=False, bbox_to_anchor=(0.5, 1.0),
-                   handlelength=2.2, columnspacing=1.0)
+        if labels:  # a run that never touched has nothing to name
+            fig.legend(handles, labels, loc="upper center", ncol=ncol, frameon=False, bbox_to_anchor=(0.5, 1.0),
+                       handlelength=2.2, columnspacing=1.0)
         fig.tight_layout(pad=0.3, h_pad=0.6, w_pad=0.6, rect=(0, 0, 1, top))
     return fig
 
@@ -544,7 +558,8 @@ def figure(results, states=None, compare=(), normalised=False, width="column", r
 def plot(path, out=None, states=None, compare=(), normalised=False, width="column", resolution_panel=False, labels=None):
     """Draws figure(path, ...) into out (default: FILE.png beside FILE.h5; .pdf or .svg give vector
     files) and returns out."""
-    out = os.fspath(out) if out else (path[:-3] if str(path).endswith(".h5") else str(path)) + ".png"
+    name = path.path if isinstance(path, Results) else os.fspath(path)
+    out = os.fspath(out) if out else (name[:-3] if name.endswith(".h5") else name) + ".png"
     figure(path, states, compare, normalised, width, resolution_panel, labels).savefig(out, dpi=STYLE["savefig.dpi"])
     return out
 

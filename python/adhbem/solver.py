@@ -394,10 +394,13 @@ class Solver:
             The curve, a row per recorded state.
         """
         import sys
-        bar = None
+        use_bar = False
         if progress is not False:
-            bar = self._progress_bar(force=progress is True, interactive=sys.stderr.isatty())
-        before = _adhbem.solver_progress(self._s, 0.0) if (bar is not None or progress is False) else None
+            # rank 0 decides for all: every rank must register the same monitors (each is collective)
+            comm = self.compliance.getComm().tompi4py()
+            use_bar = comm.bcast(_have_tqdm() and (progress is True or sys.stderr.isatty()), root=0)
+        bar = self._progress_bar() if use_bar else None
+        before = _adhbem.solver_progress(self._s, 0.0) if (use_bar or progress is False) else None
         try:
             _adhbem.solver_solve_path(self._s)
         finally:
@@ -410,17 +413,20 @@ class Solver:
             _adhbem.solver_resolution_view(self._s)  # the lines the executable prints at the end
         return self.curve()
 
-    def _progress_bar(self, force, interactive):
-        """A tqdm bar over the path's states on rank 0 (None elsewhere, or without tqdm, or when
-        not wanted); the solver's own monitor moves it."""
-        if not (force or interactive):
-            return None
-        try:
-            from tqdm.auto import tqdm
-        except ImportError:
-            return None
+    def _progress_bar(self):
+        """A tqdm bar over the path's states on rank 0 (None elsewhere), moved by a monitor that
+        every rank registers once. The monitor holds the solver weakly: the C solver it is
+        registered with is the solver's own, and a strong reference would keep both alive."""
+        from tqdm.auto import tqdm
         if not getattr(self, "_bar_monitor", False):
-            self.monitor(self._move_bar)
+            import weakref
+            solver = weakref.ref(self)
+
+            def move(step, state):
+                s = solver()
+                if s is not None:
+                    s._move_bar(step, state)
+            self.monitor(move)
             self._bar_monitor = True
         if self.compliance.getComm().getRank() != 0:
             return None
@@ -653,6 +659,14 @@ class Solver:
     compliance = property(lambda self: self._obj("compliance"), doc="the compliance Mat K")
     contact_set = property(lambda self: self._obj("contact_set"), doc="the contact set IS")
     spacing = property(lambda self: (self._obj("hx"), self._obj("hy")), doc="(hx, hy)")
+
+
+def _have_tqdm():
+    try:
+        import tqdm  # noqa: F401
+        return True
+    except ImportError:
+        return False
 
 
 # Solver's keywords, their defaults and their documentation, from the library's option table.

@@ -17,6 +17,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
+from common import FakeSurfaceTopography
 
 N, L, R, E = 32, 1.0, 1.0, 1.0
 H = L / N
@@ -400,18 +401,6 @@ def test_a_path_that_never_touches_says_so(tmp_path):
     r = subprocess.run([EXE, "-adh_n", "32", "-adh_path", "-0.02,0.01", "-adh_steps", "2"],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and "never touches" not in r.stdout
-
-
-class FakeSurfaceTopography:
-    """What adhbem uses of a SurfaceTopography 2-D topography: heights() as (nx, ny), x first."""
-    dim = 2
-
-    def __init__(self, heights_xy, sizes, periodic):
-        self._h, self.physical_sizes, self.is_periodic = heights_xy, sizes, periodic
-        self.nb_grid_pts = heights_xy.shape
-
-    def heights(self):
-        return self._h
 
 
 def surface_topography_cases():

@@ -32,12 +32,12 @@ def run(tmp_path, name, *args):
 
 @pytest.fixture(scope="module")
 def periodic(tmp_path_factory):
-    """A periodic wavy cell (Lx = 2, Ly = 0.5: the cell's area is not 1) loaded and unloaded."""
+    """A periodic wavy cell (Lx = 2, Ly = 0.25: the cell's area is 0.5) loaded and unloaded."""
     serial_only()
     z = np.tile(0.01 * np.cos(2 * np.pi * (np.arange(32) + 0.5) / 32), (32, 1))
     tmp = tmp_path_factory.mktemp("format")
     np.save(tmp / "z.npy", z)
-    return run(tmp, "wave", "-adh_boundary", "periodic", "-adh_size", "2,0.5", "-adh_topography", str(tmp / "z.npy"),
+    return run(tmp, "wave", "-adh_boundary", "periodic", "-adh_size", "2,0.25", "-adh_topography", str(tmp / "z.npy"),
                "-adh_path", "0,0.008,-0.002")
 
 
@@ -55,8 +55,11 @@ def test_h5py_sees_equal_columns_ints_and_str(periodic):
             assert isinstance(f.attrs[k], str), (k, type(f.attrs[k]))
         assert f.attrs["boundary"] == "periodic"
         c = f["curve"]
-        np.testing.assert_allclose(c["mean_pressure"][()], c["force"][()] / 1.0, rtol=1e-15)  # cell area 2 x 0.5
-        np.testing.assert_allclose(c["area_fraction"][()], c["area"][()] / 1.0, rtol=1e-15)
+        cell = f.attrs["Lx"] * f.attrs["Ly"]
+        assert cell == 0.5
+        np.testing.assert_allclose(c["mean_pressure"][()], c["force"][()] / cell, rtol=1e-15)
+        np.testing.assert_allclose(c["area_fraction"][()], c["area"][()] / cell, rtol=1e-15)
+        np.testing.assert_allclose(c["area_fraction"][()], c["contact_points"][()] / 32 ** 2, rtol=1e-14)
         assert 0 < c["area_fraction"][()].max() <= 1
 
 
@@ -115,7 +118,7 @@ def test_files_of_the_earlier_layout_still_read(periodic, tmp_path):
 def test_solver_curve_has_the_files_columns(periodic):
     """Solver.curve() of the same run has the file's columns and values."""
     z = np.tile(0.01 * np.cos(2 * np.pi * (np.arange(32) + 0.5) / 32), (32, 1))
-    s = adhbem.Solver(n=32, size=(2, 0.5), gamma=1e-3, boundary="periodic", topography=z,
+    s = adhbem.Solver(n=32, size=(2, 0.25), gamma=1e-3, boundary="periodic", topography=z,
                       path=[0, 0.008, -0.002], steps=4)
     c = s.solve_path()
     with adhbem.load(periodic) as r:

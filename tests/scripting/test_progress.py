@@ -78,3 +78,17 @@ def test_python_progress_bar_lines_and_quiet():
     assert r.returncode == 0 and "so far, about" in r.stdout and "13/13" not in r.stderr
     r = python(job, "quiet")
     assert r.returncode == 0 and r.stdout == "" and "13/13" not in r.stderr
+
+
+def test_a_solver_with_a_bar_is_freed():
+    """The bar's monitor holds the solver weakly: a solver that showed one is freed when dropped."""
+    pytest.importorskip("tqdm")
+    import gc
+    import weakref
+    import adhbem
+    s = adhbem.Solver(n=16, gamma=2e-3, path=[0.01, 0.0], steps=2)
+    s.solve_path(progress=True)
+    gone = weakref.ref(s)
+    del s
+    gc.collect()
+    assert gone() is None

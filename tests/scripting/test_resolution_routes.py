@@ -12,7 +12,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
-from common import jkr_scales
+from common import FakeSurfaceTopography, jkr_scales
 
 N, L = 64, 64.0  # grid spacing 1
 GAMMA = 0.2
@@ -40,18 +40,6 @@ def executable_estimate(tmp_path, *args):
 def heights():
     z, _ = adhbem.rough_surface(N, L, **SURFACE)
     return adhbem.gather(z, z)
-
-
-class FakeSurfaceTopography:
-    """What adhbem reads of a SurfaceTopography topography: heights() as (nx, ny), x first."""
-    dim = 2
-
-    def __init__(self, heights_xy, sizes, periodic):
-        self._h, self.physical_sizes, self.is_periodic = heights_xy, sizes, periodic
-        self.nb_grid_pts = heights_xy.shape
-
-    def heights(self):
-        return self._h
 
 
 def test_every_route_gives_the_executables_estimate(tmp_path):

@@ -354,3 +354,35 @@ def test_resolution_panel(tmp_path):
     assert a.get_title().startswith("adhesion not resolved\n($a_c/h$ = ")
     assert any(ln.get_label().startswith("pull-off force: not resolved") for ln in a.get_lines())
     assert not any(ax.get_title().startswith("adhesion") for ax in figure(str(rough)).axes)
+
+
+def test_runs_that_never_touch_and_fields_of_every_kth_state(tmp_path):
+    """A path that never touches plots (nothing to name, no theory range to take); with fields of
+    every K-th state the maps are those written nearest, titled as such, one map a drawn state."""
+    serial_only()
+    for name, args in (("apart", ["-adh_indenter", "sphere", "-adh_gamma", "1e-3", "-adh_path", "-0.2,-0.1"]),
+                       ("apart_cell", CASES["rough"][:-2] + ["-adh_path", "-3,-2"])):
+        out = run(tmp_path, name, args)
+        assert plot_main([str(out), "--out", str(tmp_path / f"{name}.png")]) == 0
+    strided = run(tmp_path, "strided", JKR + ["-adh_fields_stride", "3"])
+    fig = figure(str(strided))
+    titles = [a.get_title() for a in fig.axes if a.get_title()]
+    with adhbem.load(strided) as r:
+        deepest = int(np.argmax(r.curve["d"]))
+        written = list(r.states)
+    assert written == list(range(0, written[-1] + 1, 3)) and deepest not in written
+    nearest = min(written, key=lambda k: abs(k - deepest))
+    assert titles[0].startswith(f"state {nearest}, the written one nearest the deepest indentation\n")
+    assert len(titles) == len(set(titles))
+
+
+def test_force_control_marks_where_the_contact_was_lost(tmp_path):
+    serial_only()
+    out = run(tmp_path, "force", ["-adh_indenter", "sphere", "-adh_gamma", "1e-3", "-adh_control", "force",
+                                  "-adh_path", "0.01,-0.01"], fields=False)
+    fig = figure(str(out))
+    with adhbem.load(out) as r:
+        k = int(np.nonzero(r.curve["pulled_off"])[0][0])
+        x = r.curve["force"][k]
+    lost = line(fig.axes[0], "contact lost")
+    assert lost.get_ydata()[0] == x and fig.axes[0].get_xlabel().endswith("force control")

@@ -232,7 +232,12 @@ def test_labels_titles_and_size_for_a_paper(tmp_path):
     fig = figure(str(out))
     assert tuple(fig.get_size_inches())[0] == 3.5
     labels = [fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel(), fig.axes[1].get_xlabel(), fig.axes[1].get_ylabel()]
-    assert labels == ["indentation $d$", "force $F$", "force $F$", "contact area $A$"]
+    # forces of a few 1e-3: plain tick labels, the power of ten in the label
+    assert labels == ["indentation $d$", "force $F$ ($\\times 10^{-3}$)", "force $F$ ($\\times 10^{-3}$)", "contact area $A$"]
+    fig.canvas.draw()
+    ticks = [t.get_text() for t in fig.axes[0].get_yticklabels()]
+    assert "0" in ticks and all(len(t) <= 4 for t in ticks), ticks  # short labels: -4.5, not -0.0045
+    assert any(t.startswith("\N{MINUS SIGN}") for t in ticks)
     maps = [a for a in fig.axes if a.get_title()]
     titles = [a.get_title() for a in maps]
     assert titles[0].startswith("deepest indentation\n$d$ = 0.02") and titles[1].startswith("largest tension\n")
@@ -269,7 +274,7 @@ def test_panels_draw_on_the_users_axes(tmp_path):
         row = P.contact_map(ax[1, 0], r, "tension")
         assert row == int(np.argmin(r.curve["force"]))
     P.resolution(ax[1, 1], str(out))
-    assert ax[0, 0].get_ylabel() == "mean pressure $\\bar p$" and ax[0, 1].get_ylabel() == "contact area fraction"
+    assert ax[0, 0].get_ylabel().startswith("mean pressure $\\bar p$") and ax[0, 1].get_ylabel() == "contact area fraction"
     assert ax[1, 0].get_title().startswith("largest tension\n")
     assert ax[0, 0].get_legend() is not None
     plt.close(fig)
@@ -308,7 +313,7 @@ def test_periodic_cell_in_mean_pressure_and_area_fraction(tmp_path):
         c, cell = r.curve, r.params["Lx"] * r.params["Ly"]
     assert cell == 32 * 32
     ax = fig.axes[0]
-    assert ax.get_ylabel() == "mean pressure $\\bar p$"
+    assert ax.get_ylabel().startswith("mean pressure $\\bar p$")
     assert fig.axes[1].get_ylabel() == "contact area fraction"
     up = line(ax, "approach")
     k = len(up.get_ydata())

@@ -18,25 +18,28 @@ from .results import Results, load  # noqa: F401
 os.environ.setdefault("OMPI_MCA_io", "^ompio")
 os.environ.setdefault("OMPI_MCA_sharedfp", "^sm")
 
-# The names of solver.py, given on first use.
-_SOLVER_NAMES = ("PETSc", "Solver", "compliance", "rough_surface", "grid_shape", "row_range", "local_rows",
-                 "set_local_rows", "gather", "compliance_info", "chi", "chi_square", "critical_stress",
-                 "love_coefficient", "_adhbem")
+# The names of the solver side, given on first use, and the module of each.
+_SOLVER_NAMES = {"PETSc": "_extension", "_adhbem": "_extension", "chi": "_extension", "chi_square": "_extension",
+                 "critical_stress": "_extension", "love_coefficient": "_extension",
+                 "compliance": "grid", "compliance_info": "grid", "grid_shape": "grid", "row_range": "grid",
+                 "local_rows": "grid", "set_local_rows": "grid", "gather": "grid",
+                 "rough_surface": "surface", "Solver": "solver"}
 
-__all__ = ["load", "Results", *_SOLVER_NAMES[:-1]]
+__all__ = ["load", "Results", *(n for n in _SOLVER_NAMES if n != "_adhbem")]
 
 
 def __getattr__(name):
     if name not in _SOLVER_NAMES:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
     try:
-        from . import solver
+        module = importlib.import_module(f".{_SOLVER_NAMES[name]}", __name__)
     except ModuleNotFoundError as e:
         if e.name not in ("petsc4py", "mpi4py", "adhbem_build"):
             raise
         raise ImportError(f"adhbem.{name} needs petsc4py ({e}); reading results (adhbem.load) and plotting "
                           "(python3 -m adhbem.plot) need only h5py, NumPy and matplotlib", name=e.name) from e
-    return getattr(solver, name)
+    return getattr(module, name)
 
 
 def __dir__():

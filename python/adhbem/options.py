@@ -8,6 +8,7 @@ the same defaults and words, and cannot drift from it.
 from __future__ import annotations
 
 import itertools
+import os
 import re
 from dataclasses import dataclass, field
 
@@ -38,6 +39,32 @@ class Option:
         return {"bool": "bool", "int": "int", "real": "float", "str": "str",
                 "int list": "int or sequence of int", "real list": "float or sequence of float",
                 "choice": "{" + ", ".join(repr(c) for c in self.choices) + "}"}[self.kind]
+
+
+def _is_sequence(value):
+    """A list, tuple, NumPy array or other sequence of values (not a string, not a 0-d array)."""
+    import numpy as np
+    if isinstance(value, (str, bytes, os.PathLike)):
+        return False
+    return np.ndim(value) > 0
+
+
+def _option_value(value):
+    """The option's text: a sequence (list, tuple, NumPy array) as comma-separated values, a real
+    number with all its digits."""
+    import numbers
+    import numpy as np
+    if _is_sequence(value):
+        return ",".join(_option_value(v) for v in np.asarray(value, dtype=object).ravel())
+    if isinstance(value, np.ndarray):  # 0-d
+        value = value.item()
+    if isinstance(value, (bool, np.bool_)):
+        return "1" if value else "0"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    return str(value)
 
 
 def _real(text):
@@ -108,7 +135,8 @@ _reads = itertools.count(1)
 def solver_options() -> tuple[Option, ...]:
     """The table of the solver's options (read once per process)."""
     global _table
-    from .solver import _adhbem  # importing it documents Solver, which reads the table
+    from . import solver  # noqa: F401 (importing it documents Solver, which reads the table)
+    from ._extension import _adhbem
     if _table is None:
         # PETSc prints a group's help once per prefix: each read has a prefix of its own
         _table = tuple(parse_help(_adhbem.option_help(f"adhbemhelp{next(_reads)}_")))

@@ -83,7 +83,7 @@ def test_the_python_route_prints_the_resolution_lines(tmp_path):
     script = tmp_path / "job.py"
     script.write_text(
         "import numpy as np, adhbem\n"
-        f"s = adhbem.Solver(n=48, gamma=2e-3, radius=1.0, path=[0.0, 0.02, -0.02], steps=4)\n"
+        "s = adhbem.Solver(n=48, gamma=2e-3, radius=1.0, path=[0.0, 0.02, -0.02], steps=4)\n"
         "s.solve_path()\n"
         "r = s.resolution\n"
         "print('DICT', r['asperity_contact_radius'], r['state'], r['resolved'])\n")

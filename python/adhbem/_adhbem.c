@@ -412,6 +412,20 @@ static void solver_capsule_destroy(PyObject *cap)
   if (s && !PetscFinalizeCalled) (void)AdhSolverDestroy(&s);
 }
 
+/* destroy(): frees the solver now, collectively, instead of whenever each rank's garbage
+   collector reaches it; the capsule is renamed, so that a later use is refused. */
+static PyObject *py_solver_destroy(PyObject *self, PyObject *args)
+{
+  PyObject *cap;
+  AdhSolver s;
+  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
+  if (!PyCapsule_IsValid(cap, "AdhSolver")) Py_RETURN_NONE; /* destroyed already */
+  s = (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
+  if (PyCapsule_SetDestructor(cap, NULL) || PyCapsule_SetName(cap, "AdhSolver (destroyed)")) return NULL;
+  PyPetscCall(AdhSolverDestroy(&s));
+  Py_RETURN_NONE;
+}
+
 static AdhSolver solver_get(PyObject *cap)
 {
   return (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
@@ -713,6 +727,7 @@ static PyMethodDef methods[] = {
   {"solver_set_topography", py_solver_set_topography, METH_VARARGS, "solver_set_topography(s, vec, kind): indenter profile from a height map or gap (kind 'height' or 'gap')"},
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
+  {"solver_destroy", py_solver_destroy, METH_VARARGS, "solver_destroy(s): frees the solver (collective)"},
   {"solver_progress", py_solver_progress, METH_VARARGS, "solver_progress(s[, seconds]) -> the -adh_progress before (set when given)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},

@@ -134,7 +134,7 @@ class Solver:
             opts[name] = _option_value(value)
             self._keys.append(name)
         try:
-            self._s = _adhbem.solver_create(comm, self.prefix)
+            self._capsule = _adhbem.solver_create(comm, self.prefix)
         except BaseException:
             self._forget_options()
             raise
@@ -152,6 +152,31 @@ class Solver:
 
     def __del__(self):
         self._forget_options()
+
+    @property
+    def _s(self):
+        """The C solver; a destroyed Solver refuses to be used."""
+        capsule = getattr(self, "_capsule", None)
+        if capsule is None:
+            raise RuntimeError("this Solver was destroyed (Solver.destroy() or the end of its with-block)")
+        return capsule
+
+    def destroy(self) -> None:
+        """Frees the solver and its PETSc objects now. Collective: every rank calls it (as they
+        created it), which is why a parallel script should free solvers this way, or with
+        ``with adhbem.Solver(...) as s:``, rather than leave them to each rank's garbage collector.
+        A destroyed solver can no longer be used; fields and the compliance taken from it stay
+        valid (petsc4py holds its own references)."""
+        capsule, self._capsule = getattr(self, "_capsule", None), None
+        if capsule is not None:
+            _adhbem.solver_destroy(capsule)
+        self._forget_options()
+
+    def __enter__(self) -> "Solver":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.destroy()
 
     def start(self, d):
         """The starting state at indentation d (a force under control="force"; hertz or adhesive,

@@ -107,3 +107,21 @@ def test_the_table_prints_as_markdown():
     rows = [line for line in r.stdout.splitlines() if line.startswith("| `-adh_")]
     assert len(rows) == len(solver_options()) > 50
     assert "| `-adh_gamma` (`gamma=`) | `0.0` | Work of adhesion dgamma (0: non-adhesive) |" in r.stdout
+
+
+@pytest.mark.mpi
+def test_destroy_and_the_with_block():
+    """destroy() frees the solver on every rank at once; the with-block does it at its end; a
+    destroyed solver is refused with a clear error, and what was taken from it stays valid."""
+    with adhbem.Solver(n=16, gamma=1e-3, path=[0.01, 0.0], steps=1) as s:
+        s.solve_path(progress=False)
+        p = s.pressure
+        F = s.curve()["force"][-1]
+    with pytest.raises(RuntimeError, match="destroyed"):
+        s.solve_path()
+    assert abs(p.sum() * (1 / 16) ** 2 - F) < 1e-12  # the Vec outlives the solver
+    s.destroy()  # twice is harmless
+    t = adhbem.Solver(n=16)
+    t.destroy()
+    with pytest.raises(RuntimeError, match="destroyed"):
+        t.pressure_array()

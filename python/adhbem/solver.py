@@ -1,7 +1,12 @@
 """The solver: ``Solver``, configured by the options of the executable, on real petsc4py objects
 (``import adhbem`` loads this module the first time one of its names is used, so that reading
 and plotting results need neither petsc4py nor the C extension)."""
+from __future__ import annotations
+
 import os
+from typing import Callable, Iterator, Optional, Union
+
+import numpy as np
 
 from ._extension import PETSc, _adhbem
 from .grid import _ndim, _shape, gather, grid_shape, local_rows, row_range, set_local_rows
@@ -178,22 +183,42 @@ class Solver:
     def __exit__(self, *exc) -> None:
         self.destroy()
 
-    def start(self, d):
-        """The starting state at indentation d (a force under control="force"; hertz or adhesive,
-        option start): the first row of a new curve. Returns the state as a dict of the curve's
-        columns."""
+    def start(self, d: float) -> dict:
+        """Computes the starting state and begins a new curve with it.
+
+        Parameters
+        ----------
+        d : float
+            The indentation (a force under ``control="force"``); the state is adhesion-free or
+            loaded from first touch as the option ``start`` says.
+
+        Returns
+        -------
+        dict
+            The state: a value per column of ``curve()``.
+        """
         return _adhbem.solver_start(self._s, float(d))
 
-    def step(self, d):
-        """One step to indentation d (a force under control="force") from the current contact set,
-        appended to the curve; returns the state as a dict of the curve's columns."""
+    def step(self, d: float) -> dict:
+        """One step from the current contact set, appended to the curve.
+
+        Parameters
+        ----------
+        d : float
+            The indentation (a force under ``control="force"``) to step to.
+
+        Returns
+        -------
+        dict
+            The state reached: a value per column of ``curve()``.
+        """
         return _adhbem.solver_step(self._s, float(d))
 
-    def state(self):
-        """The current state as a dict of the curve's columns (not recorded)."""
+    def state(self) -> dict:
+        """The current state, a value per column of ``curve()``, without recording it."""
         return _adhbem.solver_state(self._s)
 
-    def solve_path(self, progress=None):
+    def solve_path(self, progress: Optional[bool] = None) -> dict:
         """Runs the option ``path`` and returns the curve (see ``curve()``).
 
         With the option ``output``, writes the results file as it goes (and the fields of its
@@ -261,15 +286,26 @@ class Solver:
             bar.set_postfix(d=f"{state['d']:.4g}", F=f"{state['force']:.4g}", refresh=False)
             bar.refresh()
 
-    def iterate_path(self):
-        """Runs the option path as solve_path() does, a state at a time: yields each state (a dict of
-        the curve's columns) with the solver's fields current, on every rank, and appends it to the
-        curve. All ranks must take the same states (a break on one rank only leaves the others
-        waiting). It writes no results file as it goes: write(FILE) after the loop writes the curve
-        and the last state's fields, and options output, checkpoint and restart are solve_path()'s.
+    def iterate_path(self) -> Iterator[dict]:
+        """Runs the option ``path`` as ``solve_path()`` does, a state at a time.
 
-            for state in s.iterate_path():
-                p = adhbem.gather(s.pressure, s.compliance)   # this state's pressure
+        Yields
+        ------
+        dict
+            Each state (a value per column of ``curve()``), with the solver's fields current, on
+            every rank; it is appended to the curve.
+
+        Notes
+        -----
+        All ranks must take the same states: a ``break`` on one rank only leaves the others
+        waiting. No results file is written as it goes: ``write(FILE)`` after the loop writes the
+        curve and the last state's fields; the options ``output``, ``checkpoint`` and ``restart``
+        are ``solve_path()``'s.
+
+        Examples
+        --------
+        >>> for state in s.iterate_path():
+        ...     p = s.pressure_array()          # this state's pressure, (Ny, Nx)
         """
         for name in ("output", "checkpoint", "restart"):
             if name in self._options:
@@ -285,23 +321,27 @@ class Solver:
                 if state["pulled_off"]:
                     break  # the rest of this leg has nothing in contact
 
-    def monitor(self, fn):
-        """Calls fn(step, state) on every rank after each recorded state (of solve_path(),
-        iterate_path(), start() and step()); step is the curve row, state a dict of the curve's
-        columns. The solver's fields (pressure, contact_set, ...) are current inside fn, so it can
-        gather or save them."""
+    def monitor(self, fn: Callable[[int, dict], None]) -> None:
+        """Adds a function called on every rank after each recorded state.
+
+        Parameters
+        ----------
+        fn : callable
+            ``fn(step, state)``: ``step`` the curve row, ``state`` a dict of the curve's columns.
+            The solver's fields are current inside it, so it can read or save them; an exception
+            it raises stops the path and comes out of ``solve_path()``.
+        """
         _adhbem.solver_monitor(self._s, fn)
 
     @property
-    def pull_off_force(self):
-        """The largest tension carried over the curve, -min(force), or 0 without tension: the
-        pull_off_force of the results file. Under displacement control the state that ends a leg
-        by pull-off (pulled_off = 1) carries less: the contact has let go there."""
+    def pull_off_force(self) -> float:
+        """The pull-off force: the largest tension the contact carried over the curve, -min(force)
+        (0.0 without tension), the ``pull_off_force`` of the results file."""
         F = self.curve()["force"]
         return max(0.0, -float(F.min())) if len(F) else 0.0
 
     @property
-    def resolution(self):
+    def resolution(self) -> dict:
         """How well the grid resolves the adhesion, as a dict (the lines ``solve_path()`` prints):
 
         - ``asperity_contact_radius``: the JKR contact radius at pull-off of the sphere or of the
@@ -317,15 +357,16 @@ class Solver:
         """
         return _adhbem.solver_resolution(self._s)
 
-    def contact_mask(self):
-        """A new Vec on the grid: 1 on the points of the contact set, 0 elsewhere."""
+    def contact_mask(self) -> PETSc.Vec:
+        """A new Vec on the grid: 1.0 on the points of the contact set, 0.0 elsewhere
+        (``contact_array()`` gives it as a NumPy bool array)."""
         v = self.pressure.duplicate()
         v.set(0.0)
         r0, _ = v.getOwnershipRange()
         v.getArray()[self.contact_set.getIndices() - r0] = 1.0
         return v
 
-    def curve(self):
+    def curve(self) -> dict:
         """The recorded states: a dict of NumPy arrays, an entry per state, the columns of the
         results file's ``/curve`` (counts int64):
 
@@ -346,7 +387,6 @@ class Solver:
 
         ``adhbem.load(FILE).to_pandas()`` gives the same columns of a results file as a DataFrame.
         """
-        import numpy as np
         curve = {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
         objects = _adhbem.solver_objects(self._s)
         if objects["boundary"] == "periodic":
@@ -355,25 +395,55 @@ class Solver:
             curve["area_fraction"] = curve["area"] / cell
         return curve
 
-    def write(self, file):
-        """Writes the curve (and, with option fields, the current fields, as those of the last row)
-        to file and its CSV."""
+    def write(self, file: Union[str, os.PathLike]) -> None:
+        """Writes the curve to a results file and its CSV (with the option ``fields``, the current
+        fields too, as those of the last row).
+
+        Parameters
+        ----------
+        file : str or os.PathLike
+            ``FILE.h5``; the curve also goes to ``FILE.csv``.
+        """
         _adhbem.solver_write(self._s, str(file))
 
-    def view(self):
+    def view(self) -> None:
+        """Prints the solver's set-up (what ``-adh_view`` prints), on rank 0."""
         _adhbem.solver_view(self._s)
 
-    def set_gamma_field(self, vec):
-        """Work of adhesion as a field dgamma(x,y): a Vec on the grid (see make_field), or an
-        (Ny, Nx) NumPy array. It replaces the scalar gamma in Sigma."""
+    def set_gamma_field(self, vec) -> None:
+        """Sets the work of adhesion as a field dgamma(x, y), in place of the scalar ``gamma``.
+
+        Parameters
+        ----------
+        vec : numpy.ndarray or petsc4py.PETSc.Vec
+            An (Ny, Nx) array (every rank passes the whole of it) or a Vec on the grid
+            (``make_field``), >= 0 everywhere.
+
+        Raises
+        ------
+        ValueError
+            For a wrong shape, NaN or Inf, or a negative value.
+        """
         if not isinstance(vec, PETSc.Vec):
             vec = self._field_from_array("gamma_field", vec, nonnegative=True)
         _adhbem.solver_set_gamma_field(self._s, vec)
 
-    def set_topography(self, topography, kind="height"):
-        """The indenter becomes this topography (indenter "array"): an (Ny, Nx) NumPy array or a
-        Vec on the grid, holding heights z (kind "height": h = max(z) - z) or the gap h ("gap").
-        Clears the contact state; the next start() or solve_path() begins from it."""
+    def set_topography(self, topography, kind: str = "height") -> None:
+        """Makes this topography the indenter (indenter ``"array"``) and clears the contact state:
+        the next ``start()`` or ``solve_path()`` begins from it.
+
+        Parameters
+        ----------
+        topography : numpy.ndarray or petsc4py.PETSc.Vec
+            An (Ny, Nx) array (every rank passes the whole of it) or a Vec on the grid.
+        kind : {'height', 'gap'}, default 'height'
+            Heights z (the profile is h = max(z) - z) or the gap h itself.
+
+        Raises
+        ------
+        ValueError
+            For a wrong shape or NaN or Inf values.
+        """
         if not isinstance(topography, PETSc.Vec):
             topography = self._field_from_array("topography", topography)
         else:
@@ -382,7 +452,6 @@ class Solver:
         self._topography = topography  # kept: the solver holds a reference, libadhbem writes it
 
     def _field_from_array(self, name, array, nonnegative=False):
-        import numpy as np
         Nx, Ny = grid_shape(self.compliance)
         try:
             a = np.asarray(array, dtype=np.float64)
@@ -396,8 +465,14 @@ class Solver:
             raise ValueError(f"{name}: the work of adhesion must be >= 0, the minimum is {a.min()!r}")
         return self.make_field(a)
 
-    def make_field(self, array=None):
-        """A new Vec on the grid, optionally set from a (rows, Nx) or (Ny, Nx) array."""
+    def make_field(self, array=None) -> PETSc.Vec:
+        """A new Vec on the grid (zero), or set from an array.
+
+        Parameters
+        ----------
+        array : array_like, optional
+            This rank's rows, (j1 - j0, Nx), or the whole field, (Ny, Nx).
+        """
         v = self.pressure.duplicate()
         v.set(0.0)
         if array is not None:
@@ -410,7 +485,7 @@ class Solver:
     # not change them.
     _ARRAYS = ("pressure", "displacement", "gap", "profile", "critical_stress", "contact")
 
-    def array(self, name, local=False):
+    def array(self, name: str, local: bool = False) -> np.ndarray:
         """The field ``name`` of the current state as a NumPy array (a copy).
 
         Parameters
@@ -436,48 +511,82 @@ class Solver:
         a = local_rows(vec, K).copy() if local else gather(vec, K)
         return a.astype(bool) if name == "contact" else a
 
-    def pressure_array(self, local=False):
+    def pressure_array(self, local: bool = False) -> np.ndarray:
         """The pressure, (Ny, Nx) on every rank or this rank's rows (see ``array``)."""
         return self.array("pressure", local)
 
-    def displacement_array(self, local=False):
+    def displacement_array(self, local: bool = False) -> np.ndarray:
         """The surface displacement u = K p (see ``array``)."""
         return self.array("displacement", local)
 
-    def gap_array(self, local=False):
+    def gap_array(self, local: bool = False) -> np.ndarray:
         """The gap g = h - d + u (see ``array``)."""
         return self.array("gap", local)
 
-    def profile_array(self, local=False):
+    def profile_array(self, local: bool = False) -> np.ndarray:
         """The indenter's profile h, the gap at d = 0 before deformation (see ``array``); for a
         height map z given as topography, h = max(z) - z."""
         return self.array("profile", local)
 
-    def contact_array(self, local=False):
+    def contact_array(self, local: bool = False) -> np.ndarray:
         """The contact set as a bool mask (see ``array``)."""
         return self.array("contact", local)
 
     @property
-    def rows(self):
+    def rows(self) -> tuple[int, int]:
         """(j0, j1): the grid rows this rank owns (``array(..., local=True)`` gives them)."""
         return row_range(self.compliance)
 
     @property
-    def critical_stress(self):
-        """Sigma of the scalar work of adhesion on this grid."""
+    def critical_stress(self) -> float:
+        """The critical stress Sigma of the scalar work of adhesion on this grid
+        (``critical_stress_field`` gives Sigma(x, y) of a dgamma field)."""
         return _adhbem.solver_critical_stress(self._s)
 
     def _obj(self, name):
         return _adhbem.solver_objects(self._s, name)[name]
 
-    pressure = property(lambda self: self._obj("pressure"), doc="pressure Vec (tension < 0)")
-    displacement = property(lambda self: self._obj("displacement"), doc="surface displacement u = K p")
-    gap = property(lambda self: self._obj("gap"), doc="gap g = h - d + u")
-    profile = property(lambda self: self._obj("profile"), doc="indenter profile h")
-    critical_stress_field = property(lambda self: self._obj("critical_stress"), doc="Sigma(x,y)")
-    compliance = property(lambda self: self._obj("compliance"), doc="the compliance Mat K")
-    contact_set = property(lambda self: self._obj("contact_set"), doc="the contact set IS")
-    spacing = property(lambda self: (self._obj("hx"), self._obj("hy")), doc="(hx, hy)")
+    # The solver's own petsc4py objects, of the current state (not copies: the next step changes
+    # them; the *_array methods give NumPy copies)
+    @property
+    def pressure(self) -> PETSc.Vec:
+        """The pressure p on the grid (compression > 0, tension < 0)."""
+        return self._obj("pressure")
+
+    @property
+    def displacement(self) -> PETSc.Vec:
+        """The surface displacement u = K p."""
+        return self._obj("displacement")
+
+    @property
+    def gap(self) -> PETSc.Vec:
+        """The gap g = h - d + u."""
+        return self._obj("gap")
+
+    @property
+    def profile(self) -> PETSc.Vec:
+        """The indenter's profile h (the gap at d = 0 before deformation)."""
+        return self._obj("profile")
+
+    @property
+    def critical_stress_field(self) -> PETSc.Vec:
+        """The critical stress Sigma(x, y) on the grid."""
+        return self._obj("critical_stress")
+
+    @property
+    def compliance(self) -> PETSc.Mat:
+        """The compliance K (u = K p), a MatShell applied with distributed FFTW."""
+        return self._obj("compliance")
+
+    @property
+    def contact_set(self) -> PETSc.IS:
+        """The contact set: the grid points in contact, as global indices (row-major, j Nx + i)."""
+        return self._obj("contact_set")
+
+    @property
+    def spacing(self) -> tuple[float, float]:
+        """(hx, hy): the grid spacing."""
+        return self._obj("hx"), self._obj("hy")
 
 
 def _have_tqdm():

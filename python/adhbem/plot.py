@@ -25,14 +25,23 @@ what differs between the runs. ``normalised=True`` draws a JKR sphere in F/F_adh
 adhbem has no units of its own: lengths, E* and dgamma are those of the input (any consistent
 set), so axes carry symbols, not units.
 """
+from __future__ import annotations
+
 import argparse
 import math
 import os
 import sys
+from typing import TYPE_CHECKING, Optional, Sequence, Union
 
 import numpy as np
 
 from .results import Results, load
+
+if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+ResultsLike = Union[str, os.PathLike, Results]  # a results file's name, or one adhbem.load opened
 
 COLUMN = 3.5  # inches: one column of a two-column journal page
 DOUBLE = 7.2  # inches: the width of the page
@@ -278,7 +287,8 @@ def _finish(ax, legend, many=False):
         ax.legend(handles=handles + (ax._adhbem_styles if many else []), frameon=False)
 
 
-def curve(ax, results, compare=(), normalised=False, theory=True, legend=True, labels=None):
+def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), normalised: bool = False,
+          theory: bool = True, legend: bool = True, labels: Optional[Sequence[str]] = None) -> None:
     """Force against indentation on ``ax`` (mean pressure on a periodic cell; F/F_adh against
     d/|d_c| with ``normalised``): approach solid, retraction dashed, the analytic curve over the
     data's range, the pull-off force (the largest tension) as a star, and the state where the
@@ -326,7 +336,8 @@ def curve(ax, results, compare=(), normalised=False, theory=True, legend=True, l
         _close(runs)
 
 
-def area(ax, results, compare=(), normalised=False, theory=True, legend=True, labels=None):
+def area(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), normalised: bool = False,
+         theory: bool = True, legend: bool = True, labels: Optional[Sequence[str]] = None) -> None:
     """Contact area against force on ``ax`` (area fraction against mean pressure on a periodic
     cell; a/a_c against F/F_adh with ``normalised``), approach solid, retraction dashed."""
     runs = _runs(results, compare, labels)
@@ -356,7 +367,7 @@ def area(ax, results, compare=(), normalised=False, theory=True, legend=True, la
         _close(runs)
 
 
-def state_row(curve, state):
+def state_row(curve: dict, state: Union[int, str, tuple]) -> int:
     """The curve row of ``state``: an int (negative from the end), ``"deepest"`` (the deepest
     indentation) or ``"tension"`` (the largest tension), or a tuple of those naming one row."""
     n = len(curve["d"])
@@ -414,7 +425,8 @@ def _written(results, row):
     return int(results.states[np.argmin(np.abs(results.states - row))])
 
 
-def contact_map(ax, results, state="deepest", field="auto", colorbar=True, normalised=False):
+def contact_map(ax: "Axes", results: ResultsLike, state: Union[int, str] = "deepest", field: str = "auto",
+                colorbar: bool = True, normalised: bool = False) -> int:
     """The contact of one state on ``ax``: the pressure on the contact set (colour bar: p, tension
     blue, compression red) when the file has the pressure field, else the contact set itself.
     ``state`` is a curve row, ``"deepest"`` or ``"tension"``; the file's written state nearest to
@@ -469,7 +481,8 @@ def contact_map(ax, results, state="deepest", field="auto", colorbar=True, norma
         run.close()
 
 
-def resolution(ax, results, compare=(), legend=True, labels=None):
+def resolution(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), legend: bool = True,
+               labels: Optional[Sequence[str]] = None) -> None:
     """The share of the tension carried by contact patches under 314 elements, per state carrying
     tension: above 0.1 at the pull-off force the grid does not resolve the adhesion."""
     runs = _runs(results, compare, labels)
@@ -516,7 +529,9 @@ def default_states(curve):
     return ["deepest"] + (["tension"] if curve["force"].min() < 0 else [])
 
 
-def figure(results, states=None, compare=(), normalised=False, width="column", resolution_panel=False, labels=None):
+def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = None, compare: Sequence[ResultsLike] = (),
+           normalised: bool = False, width: str = "column", resolution_panel: bool = False,
+           labels: Optional[Sequence[str]] = None) -> "Figure":
     """A figure for a paper: the force-indentation curve, area against force, the contact maps of
     ``states`` (default: the deepest indentation and the largest tension, when the file has
     fields) and, with ``resolution_panel``, the resolution of the adhesion; ``width`` "column"
@@ -576,7 +591,9 @@ def figure(results, states=None, compare=(), normalised=False, width="column", r
     return fig
 
 
-def plot(path, out=None, states=None, compare=(), normalised=False, width="column", resolution_panel=False, labels=None):
+def plot(path: ResultsLike, out: Optional[Union[str, os.PathLike]] = None, states: Optional[Sequence[Union[int, str]]] = None,
+         compare: Sequence[ResultsLike] = (), normalised: bool = False, width: str = "column",
+         resolution_panel: bool = False, labels: Optional[Sequence[str]] = None) -> str:
     """Draws figure(path, ...) into out (default: FILE.png beside FILE.h5; .pdf or .svg give vector
     files) and returns out."""
     name = path.path if isinstance(path, Results) else os.fspath(path)

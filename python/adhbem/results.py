@@ -8,8 +8,11 @@ A run that was killed (SIGKILL, a node lost) leaves FILE.h5.part and FILE.csv.pa
 every state recorded before: load("FILE.h5") reads the .part then (with a warning), and the curve
 comes from the CSV journal when the HDF5 file cannot be read or holds fewer states.
 """
+from __future__ import annotations
+
 import os
 import warnings
+from typing import Union
 
 import numpy as np
 
@@ -23,19 +26,35 @@ def _plain(value):
 
 
 class Results:
-    """One results file. curve: dict of 1-D arrays, one entry per recorded state; params: the
-    root attributes (grid, material, indenter, control, criterion, pull_off_force, complete...);
-    pull_off_force: the largest tension carried;
-    states: the curve rows that have fields (empty without -adh_fields); field(name, state): the
-    (Ny, Nx) array of pressure, displacement, gap or contact of curve row `state`; profile and
-    critical_stress: the (Ny, Nx) arrays written once."""
+    """One results file, open for reading (``adhbem.load``).
+
+    Attributes
+    ----------
+    path : str
+        The file read (``FILE.h5.part`` for a run that was killed).
+    curve : dict of numpy.ndarray
+        The curve: a 1-D array per column, an entry per recorded state (counts as int64).
+    params : dict
+        The root attributes: grid, material, indenter, control, criterion, ``pull_off_force``,
+        the resolution, ``path``, ``complete``, ... (text as str).
+    states : numpy.ndarray
+        The curve rows whose fields the file holds (empty without ``-adh_fields``).
+    field_names : list of str
+        The fields it holds, of ``pressure``, ``displacement``, ``gap``, ``contact``.
+
+    Examples
+    --------
+    >>> with adhbem.load("results/rough.h5") as r:
+    ...     df = r.to_pandas()
+    ...     mask = r.field("contact", r.states[-1])
+    """
 
     FIELDS = ("pressure", "displacement", "gap", "contact")
     # integers in the file; earlier files and the CSV journal hold them as floats
     COUNTS = ("contact_points", "outer_iterations", "ksp_iterations", "compliance_applications", "fft_pairs",
               "patches", "pulled_off", "smallest_tensile_patch")
 
-    def __init__(self, path):
+    def __init__(self, path: Union[str, os.PathLike]):
         import h5py
         self.path = str(path)
         if not os.path.exists(self.path) and os.path.exists(self.path + ".part"):
@@ -78,8 +97,19 @@ class Results:
         self.states = self.states[self.states < len(self.curve.get("d", ()))]
 
     def to_pandas(self):
-        """The curve as a ``pandas.DataFrame``, a row per recorded state (the index: the state,
-        the curve row that ``field(name, state)`` takes). pandas is needed for this call only."""
+        """The curve as a ``pandas.DataFrame``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            A row per recorded state, indexed by the state (the curve row that
+            ``field(name, state)`` takes), a column per column of ``curve``.
+
+        Raises
+        ------
+        ImportError
+            Without pandas (needed for this call only).
+        """
         try:
             import pandas as pd
         except ImportError:
@@ -89,8 +119,26 @@ class Results:
         frame.index.name = "state"
         return frame
 
-    def field(self, name, state):
-        """The field `name` of curve row `state` (negative: from the end), read from the file."""
+    def field(self, name: str, state: int) -> np.ndarray:
+        """A field of one state, read from the file now.
+
+        Parameters
+        ----------
+        name : {'pressure', 'displacement', 'gap', 'contact'}
+            The field (``contact``: uint8, 1 in contact).
+        state : int
+            The curve row (negative: from the end); it must be one of ``states``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (Ny, Nx).
+
+        Raises
+        ------
+        KeyError
+            When the file does not hold that field, or not for that state.
+        """
         if name not in self.field_names:
             raise KeyError(f"{self.path} holds no field {name!r} (it has {self.field_names or 'none'}; write them with -adh_fields)")
         n = len(self.curve["d"])
@@ -101,23 +149,26 @@ class Results:
         return self._file["fields"][name][frames[0]]
 
     @property
-    def pull_off_force(self):
-        """The largest tension carried over the run, -min(force) (0: none)."""
+    def pull_off_force(self) -> float:
+        """The pull-off force: the largest tension the contact carried, -min(force) (0.0: none)."""
         return self.params.get("pull_off_force", max(0.0, -float(self.curve["force"].min())))
 
     @property
-    def profile(self):
+    def profile(self) -> np.ndarray:
+        """The indenter's profile h, (Ny, Nx)."""
         return self._file["fields"]["profile"][()]
 
     @property
-    def critical_stress(self):
+    def critical_stress(self) -> np.ndarray:
+        """The critical stress Sigma(x, y), (Ny, Nx)."""
         return self._file["fields"]["critical_stress"][()]
 
-    def close(self):
+    def close(self) -> None:
+        """Closes the file (a with-block does it at its end)."""
         if self._file is not None:
             self._file.close()
 
-    def __enter__(self):
+    def __enter__(self) -> "Results":
         return self
 
     def __exit__(self, *exc):
@@ -149,6 +200,18 @@ def _read_journal(name):
     return {k: data[:, j] for j, k in enumerate(header) if k != "step"}
 
 
-def load(path):
-    """The results file at path, as a Results (use it in a with statement, or close() it)."""
+def load(path: Union[str, os.PathLike]) -> Results:
+    """Opens a results file (``-adh_output FILE.h5``) for reading; needs only h5py and NumPy.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        ``FILE.h5``; if it is missing but ``FILE.h5.part`` is there (a run that was killed),
+        that is read, with a warning.
+
+    Returns
+    -------
+    Results
+        Use it in a with-block, or ``close()`` it.
+    """
     return Results(path)

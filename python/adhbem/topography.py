@@ -5,16 +5,18 @@ formats it reads (x3p, di, opd, sur, ...).
 Axis order. adhbem's arrays are (Ny, Nx): rows along y, as the grid is distributed by rows and as
 h5py and matplotlib show them. SurfaceTopography's ``heights()`` is (nx, ny), x first; it is
 transposed here, so a square map keeps its orientation (x stays x)."""
+from __future__ import annotations
+
 import numpy as np
 
 
-def is_surface_topography(obj):
+def is_surface_topography(obj) -> bool:
     """Whether obj looks like a SurfaceTopography 2-D topography (duck typing: the package is not a
     dependency)."""
     return callable(getattr(obj, "heights", None)) and hasattr(obj, "physical_sizes") and hasattr(obj, "nb_grid_pts")
 
 
-def from_surface_topography(t):
+def from_surface_topography(t) -> tuple[np.ndarray, tuple[int, int], tuple[float, float], bool]:
     """(z, (Nx, Ny), (Lx, Ly), periodic) of a SurfaceTopography topography: the heights as an
     (Ny, Nx) array, the grid, the physical sizes and whether it is periodic."""
     if getattr(t, "dim", 2) != 2:

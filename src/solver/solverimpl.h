@@ -316,6 +316,7 @@ static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
   return PetscMax(ADH_NORMAL_RADIUS, (PetscInt)PetscCeilReal(radius));
 }
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt removed, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverAttachDecided_Private(AdhSolver, Vec xC, PetscReal rnorm, PetscBool *certain, PetscReal *needed);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverGapFromDisplacement_Private(AdhSolver, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);

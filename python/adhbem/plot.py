@@ -289,10 +289,27 @@ def _finish(ax, legend, many=False):
 
 def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), normalised: bool = False,
           theory: bool = True, legend: bool = True, labels: Optional[Sequence[str]] = None) -> None:
-    """Force against indentation on ``ax`` (mean pressure on a periodic cell; F/F_adh against
-    d/|d_c| with ``normalised``): approach solid, retraction dashed, the analytic curve over the
-    data's range, the pull-off force (the largest tension) as a star, and the state where the
-    contact was lost as a cross."""
+    """Force against indentation: approach solid, retraction dashed, the analytic curve over the
+    data's range, the pull-off force (the largest tension) as a star, where the contact was lost as
+    a cross. A periodic cell is drawn as mean pressure.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    results : str, os.PathLike or adhbem.Results
+        A results file's name, or one ``adhbem.load`` opened.
+    compare : sequence of the same, optional
+        Other runs drawn beside, one colour a run.
+    normalised : bool, default False
+        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+    theory : bool, default True
+        Draw the analytic curve where the indenter has one.
+    legend : bool, default True
+        Put a legend on the axes.
+    labels : sequence of str, optional
+        A name a run (default: the file names and what differs between the runs).
+    """
     runs = _runs(results, compare, labels)
     try:
         colors, many = _colors(), len(runs) > 1
@@ -338,8 +355,26 @@ def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (),
 
 def area(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), normalised: bool = False,
          theory: bool = True, legend: bool = True, labels: Optional[Sequence[str]] = None) -> None:
-    """Contact area against force on ``ax`` (area fraction against mean pressure on a periodic
-    cell; a/a_c against F/F_adh with ``normalised``), approach solid, retraction dashed."""
+    """Contact area against force, approach solid, retraction dashed (area fraction against mean
+    pressure on a periodic cell).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    results : str, os.PathLike or adhbem.Results
+        A results file's name, or one ``adhbem.load`` opened.
+    compare : sequence of the same, optional
+        Other runs drawn beside, one colour a run.
+    normalised : bool, default False
+        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+    theory : bool, default True
+        Draw the analytic curve where the indenter has one.
+    legend : bool, default True
+        Put a legend on the axes.
+    labels : sequence of str, optional
+        A name a run (default: the file names and what differs between the runs).
+    """
     runs = _runs(results, compare, labels)
     try:
         colors, many = _colors(), len(runs) > 1
@@ -427,11 +462,31 @@ def _written(results, row):
 
 def contact_map(ax: "Axes", results: ResultsLike, state: Union[int, str] = "deepest", field: str = "auto",
                 colorbar: bool = True, normalised: bool = False) -> int:
-    """The contact of one state on ``ax``: the pressure on the contact set (colour bar: p, tension
-    blue, compression red) when the file has the pressure field, else the contact set itself.
-    ``state`` is a curve row, ``"deepest"`` or ``"tension"``; the file's written state nearest to
-    it is drawn (``-adh_fields_stride``), titled by what it is (in JKR's scales with
-    ``normalised``). Returns the curve row drawn."""
+    """The contact of one state: the pressure on the contact set (tension blue, compression red)
+    when the file has the pressure field, else the contact set, with its colour bar; titled by
+    what the state is.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    results : str, os.PathLike or adhbem.Results
+        A results file's name, or one ``adhbem.load`` opened.
+    state : int or {'deepest', 'tension'}, default 'deepest'
+        A curve row (negative from the end), the deepest indentation or the largest tension; the
+        file's written state nearest to it is drawn (``-adh_fields_stride``).
+    field : {'auto', 'pressure', 'contact'}, default 'auto'
+        What to draw: the pressure when the file has it, or the contact set.
+    colorbar : bool, default True
+        Add the colour bar.
+    normalised : bool, default False
+        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+
+    Returns
+    -------
+    int
+        The curve row drawn.
+    """
     import matplotlib
     run = Run(results)
     try:
@@ -483,8 +538,23 @@ def contact_map(ax: "Axes", results: ResultsLike, state: Union[int, str] = "deep
 
 def resolution(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), legend: bool = True,
                labels: Optional[Sequence[str]] = None) -> None:
-    """The share of the tension carried by contact patches under 314 elements, per state carrying
-    tension: above 0.1 at the pull-off force the grid does not resolve the adhesion."""
+    """The resolution of the adhesion: the share of the tension carried by contact patches under
+    314 elements, per state carrying tension (above 0.1 at the pull-off force the grid does not
+    resolve the adhesion), the pull-off state marked, the run's verdict as the title.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    results : str, os.PathLike or adhbem.Results
+        A results file's name, or one ``adhbem.load`` opened.
+    compare : sequence of the same, optional
+        Other runs drawn beside, one colour a run.
+    legend : bool, default True
+        Put a legend on the axes.
+    labels : sequence of str, optional
+        A name a run (default: the file names and what differs between the runs).
+    """
     runs = _runs(results, compare, labels)
     try:
         colors = _colors()
@@ -532,11 +602,31 @@ def default_states(curve):
 def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = None, compare: Sequence[ResultsLike] = (),
            normalised: bool = False, width: str = "column", resolution_panel: bool = False,
            labels: Optional[Sequence[str]] = None) -> "Figure":
-    """A figure for a paper: the force-indentation curve, area against force, the contact maps of
-    ``states`` (default: the deepest indentation and the largest tension, when the file has
-    fields) and, with ``resolution_panel``, the resolution of the adhesion; ``width`` "column"
-    (3.5 in, two panels a row) or "double" (7.2 in, one row). One legend above the panels; the
-    runs are named by ``labels`` (one a run) or by their files and what differs between them."""
+    """A figure for a paper: the force-indentation curve, area against force, contact maps and,
+    on request, the resolution of the adhesion, with one legend above the panels.
+
+    Parameters
+    ----------
+    results : str, os.PathLike or adhbem.Results
+        A results file's name, or one ``adhbem.load`` opened.
+    states : sequence of int or {'deepest', 'tension'}, optional
+        The contact maps (default: the deepest indentation and the largest tension, when the file
+        has fields; one map where they are the same state).
+    compare : sequence of the same, optional
+        Other runs drawn beside, one colour a run.
+    normalised : bool, default False
+        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+    width : {'column', 'double'}, default 'column'
+        A journal column (3.5 in, two panels a row) or the page (7.2 in, one row).
+    resolution_panel : bool, default False
+        Add the resolution panel.
+    labels : sequence of str, optional
+        A name a run (default: the file names and what differs between the runs).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     import matplotlib
     from matplotlib.figure import Figure
 
@@ -594,8 +684,23 @@ def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = N
 def plot(path: ResultsLike, out: Optional[Union[str, os.PathLike]] = None, states: Optional[Sequence[Union[int, str]]] = None,
          compare: Sequence[ResultsLike] = (), normalised: bool = False, width: str = "column",
          resolution_panel: bool = False, labels: Optional[Sequence[str]] = None) -> str:
-    """Draws figure(path, ...) into out (default: FILE.png beside FILE.h5; .pdf or .svg give vector
-    files) and returns out."""
+    """Draws ``figure(path, ...)`` into a file.
+
+    Parameters
+    ----------
+    path : str, os.PathLike or adhbem.Results
+        The results file.
+    out : str or os.PathLike, optional
+        The figure file: PNG (300 dpi), PDF or SVG by its extension (default: FILE.png beside
+        FILE.h5).
+    states, compare, normalised, width, resolution_panel, labels
+        As for ``figure``.
+
+    Returns
+    -------
+    str
+        The file written.
+    """
     name = path.path if isinstance(path, Results) else os.fspath(path)
     out = os.fspath(out) if out else (name[:-3] if name.endswith(".h5") else name) + ".png"
     figure(path, states, compare, normalised, width, resolution_panel, labels).savefig(out, dpi=STYLE["savefig.dpi"])

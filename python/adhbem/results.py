@@ -96,7 +96,7 @@ class Results:
         # frames written after the last state the file knows of (a kill between the two) are not its
         self.states = self.states[self.states < len(self.curve.get("d", ()))]
 
-    def to_pandas(self):
+    def to_pandas(self) -> "pandas.DataFrame":  # noqa: F821 (pandas is optional)
         """The curve as a ``pandas.DataFrame``.
 
         Returns

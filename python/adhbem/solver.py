@@ -512,24 +512,54 @@ class Solver:
         return a.astype(bool) if name == "contact" else a
 
     def pressure_array(self, local: bool = False) -> np.ndarray:
-        """The pressure, (Ny, Nx) on every rank or this rank's rows (see ``array``)."""
+        """The pressure p, a NumPy copy (see ``array``)
+
+        Parameters
+        ----------
+        local : bool, default False
+            False: the whole (Ny, Nx) field on every rank (collective); True: this rank's rows.
+        """
         return self.array("pressure", local)
 
     def displacement_array(self, local: bool = False) -> np.ndarray:
-        """The surface displacement u = K p (see ``array``)."""
+        """The surface displacement u = K p, a NumPy copy (see ``array``)
+
+        Parameters
+        ----------
+        local : bool, default False
+            False: the whole (Ny, Nx) field on every rank (collective); True: this rank's rows.
+        """
         return self.array("displacement", local)
 
     def gap_array(self, local: bool = False) -> np.ndarray:
-        """The gap g = h - d + u (see ``array``)."""
+        """The gap g = h - d + u, a NumPy copy (see ``array``)
+
+        Parameters
+        ----------
+        local : bool, default False
+            False: the whole (Ny, Nx) field on every rank (collective); True: this rank's rows.
+        """
         return self.array("gap", local)
 
     def profile_array(self, local: bool = False) -> np.ndarray:
-        """The indenter's profile h, the gap at d = 0 before deformation (see ``array``); for a
-        height map z given as topography, h = max(z) - z."""
+        """The indenter's profile h, the gap at d = 0 before deformation, a NumPy copy (see
+        ``array``); for a height map z given as topography, h = max(z) - z
+
+        Parameters
+        ----------
+        local : bool, default False
+            False: the whole (Ny, Nx) field on every rank (collective); True: this rank's rows.
+        """
         return self.array("profile", local)
 
     def contact_array(self, local: bool = False) -> np.ndarray:
-        """The contact set as a bool mask (see ``array``)."""
+        """The contact set as a NumPy bool mask (see ``array``)
+
+        Parameters
+        ----------
+        local : bool, default False
+            False: the whole (Ny, Nx) field on every rank (collective); True: this rank's rows.
+        """
         return self.array("contact", local)
 
     @property

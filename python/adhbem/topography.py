@@ -11,14 +11,36 @@ import numpy as np
 
 
 def is_surface_topography(obj) -> bool:
-    """Whether obj looks like a SurfaceTopography 2-D topography (duck typing: the package is not a
-    dependency)."""
+    """Whether ``obj`` looks like a SurfaceTopography 2-D topography (duck typing: the package is
+    not a dependency).
+
+    Parameters
+    ----------
+    obj : object
+        Anything.
+    """
     return callable(getattr(obj, "heights", None)) and hasattr(obj, "physical_sizes") and hasattr(obj, "nb_grid_pts")
 
 
 def from_surface_topography(t) -> tuple[np.ndarray, tuple[int, int], tuple[float, float], bool]:
-    """(z, (Nx, Ny), (Lx, Ly), periodic) of a SurfaceTopography topography: the heights as an
-    (Ny, Nx) array, the grid, the physical sizes and whether it is periodic."""
+    """What adhbem needs of a SurfaceTopography topography.
+
+    Parameters
+    ----------
+    t : SurfaceTopography.Topography
+        A 2-D topography without undefined (NaN) heights.
+
+    Returns
+    -------
+    z : numpy.ndarray
+        The heights, (Ny, Nx) (SurfaceTopography's ``heights()`` transposed).
+    n : (int, int)
+        (Nx, Ny).
+    size : (float, float)
+        (Lx, Ly), its physical sizes.
+    periodic : bool
+        Whether it is periodic.
+    """
     if getattr(t, "dim", 2) != 2:
         raise ValueError(f"topography: a SurfaceTopography object of dimension {t.dim}; adhbem needs a 2-D map")
     h = np.asarray(t.heights(), dtype=np.float64)

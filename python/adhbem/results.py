@@ -12,9 +12,12 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import Union
+from typing import TYPE_CHECKING, Union
 
 import numpy as np
+
+if TYPE_CHECKING:  # pandas is optional: to_pandas() imports it
+    import pandas
 
 
 def _plain(value):
@@ -96,7 +99,7 @@ class Results:
         # frames written after the last state the file knows of (a kill between the two) are not its
         self.states = self.states[self.states < len(self.curve.get("d", ()))]
 
-    def to_pandas(self) -> "pandas.DataFrame":  # noqa: F821 (pandas is optional)
+    def to_pandas(self) -> "pandas.DataFrame":
         """The curve as a ``pandas.DataFrame``.
 
         Returns

@@ -174,7 +174,25 @@ static PetscErrorCode HDF5Load(AdhGrid grid, const char option[], const char pat
   PetscFunctionReturn(0);
 }
 
-/* All ranks agree whether v has the grid's row layout and only finite values. */
+/*@
+  AdhFieldCheck - Checks that a vector has a grid's row layout and only finite values, so that all ranks agree
+
+  Collective
+
+  Input Parameters:
++ grid - the grid, set up
+. what - what the vector is, named in the error messages
+- v    - the vector
+
+  Notes:
+  The layout is that of `AdhGridCreateVector()`: Nx Ny entries in all, ym Nx (the rank's rows) on each rank. Every rank learns
+  the outcome, so all fail together: a wrong layout is `PETSC_ERR_ARG_SIZ`, a NaN or Inf value `PETSC_ERR_ARG_WRONG`, a grid
+  not set up `PETSC_ERR_ORDER`.
+
+  Level: advanced
+
+.seealso: `AdhFieldLoad()`, `AdhGridCreateVector()`, `AdhSolverSetTopography()`, `AdhSolverSetWorkOfAdhesionField()`
+@*/
 PetscErrorCode AdhFieldCheck(AdhGrid grid, const char what[], Vec v)
 {
   PetscInt           N, n, ys, ym;
@@ -199,6 +217,32 @@ PetscErrorCode AdhFieldCheck(AdhGrid grid, const char what[], Vec v)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhFieldLoad - Reads a (Ny, Nx) field on a grid from a .npy file or a dataset of an HDF5 file
+
+  Collective
+
+  Input Parameters:
++ grid    - the grid, set up
+. option  - the option that named the file (such as "-adh_topography"), named in the error messages
+. path    - the file: a C-ordered float64 or float32 .npy array, or an HDF5 file
+- dataset - the name of the 2-D floating-point dataset in an HDF5 file (not used for a .npy file)
+
+  Output Parameter:
+. v - a vector with the grid's layout (`AdhGridCreateVector()`), which receives the field
+
+  Notes:
+  Rank 0 tells the format from the file's first bytes and every rank learns it, so a missing file or one that is neither .npy
+  nor HDF5 fails everywhere at once. A .npy file must be little-endian ('<f8' or '<f4'), C-ordered, of version 1 to 3, with
+  shape exactly (Ny, Nx); every rank reads its own rows, and a rank that fails makes every rank fail. An HDF5 dataset must
+  exist, be floating point and have dimensions (Ny, Nx); it is read with `VecLoad()` through PETSc's HDF5 viewer, and v keeps
+  its own name. Then `AdhFieldCheck()` checks the layout of v and that every value is finite. Every error names option and the
+  file.
+
+  Level: advanced
+
+.seealso: `AdhFieldCheck()`, `AdhGridCreateVector()`, `AdhSolverSetTopography()`
+@*/
 PetscErrorCode AdhFieldLoad(AdhGrid grid, const char option[], const char path[], const char dataset[], Vec v)
 {
   int  format;

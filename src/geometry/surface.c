@@ -49,6 +49,37 @@ static void ModeGaussian(PetscInt seed, PetscInt kx, PetscInt ky, double *re, do
   *im = r * sin(2.0 * PETSC_PI * u2);
 }
 
+/*@
+  AdhSurfaceSetFromOptions - Fills the parameters of a random rough surface from their defaults and the options database
+
+  Collective
+
+  Input Parameters:
++ comm   - the communicator of the options
+- prefix - the options prefix, or `NULL`
+
+  Output Parameter:
+. s - the surface's parameters; every field is overwritten
+
+  Options Database Keys:
++ -adh_hurst <H> - the Hurst exponent H in (0, 1], C(q) ~ q^(-2(1+H)) between roll-off and cut-off (default 0.8)
+. -adh_rolloff_wavelength <lambda_r> - the roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default: the cell size max(Lx, Ly))
+. -adh_cutoff_wavelength <lambda_s> - the short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default: 4 max(hx, hy), at
+                                      most the cell size)
+. -adh_rms_height <h> - the rms height sqrt(mean z^2) over the grid points, realised exactly (not with -adh_rms_slope)
+. -adh_rms_slope <s> - the rms slope sqrt(mean |grad z|^2), from the Fourier coefficients, realised exactly (default 0.1
+                       unless -adh_rms_height is given)
+- -adh_seed <seed> - the random seed: each Fourier coefficient is a hash of (seed, kx, ky) (default 1)
+
+  Notes:
+  Parameters left at their defaults hold `PETSC_DEFAULT`; those that depend on the grid are resolved, and every range checked,
+  by `AdhSurfaceGenerate()`. Here only the rms height and slope are checked: not both, and a given value positive and finite
+  (so that it cannot pass as `PETSC_DEFAULT`).
+
+  Level: intermediate
+
+.seealso: `AdhSurfaceGenerate()`, `AdhSurfaceView()`, `AdhSurfaceWriteHeights()`
+@*/
 PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhSurface *s)
 {
   PetscBool seth, sets;
@@ -285,6 +316,33 @@ static PetscErrorCode GenerateRows(AdhGrid grid, AdhSurface *s, double **heights
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSurfaceGenerate - Generates the heights of a periodic, self-affine, Gaussian random rough surface on a grid
+
+  Collective
+
+  Input Parameters:
++ grid - the grid; it is set up here if it is not yet
+- s    - the surface's parameters, from `AdhSurfaceSetFromOptions()`; on return also the resolved parameters and the realised
+         statistics
+
+  Output Parameter:
+. z - the heights, mean zero, in a vector with the grid's layout (`AdhGridCreateVector()`)
+
+  Notes:
+  It resolves the defaults that depend on the grid and checks every range, naming the option: the Hurst exponent in (0, 1],
+  the cut-off wavelength in [2 max(hx, hy), max(Lx, Ly)], the roll-off wavelength between the cut-off and max(Lx, Ly). The
+  heights are scaled to the requested rms height or slope exactly. The realised statistics (rms height and slope, mean,
+  extreme heights, number of Fourier modes) and the wavelengths used are recorded in s.
+
+  The surface is the same to the last bit on any number of ranks (on one machine): each Fourier coefficient is drawn from
+  (seed, kx, ky) alone, and the transform and the sums are done in an order that does not depend on the ranks. The cost is
+  O(N log N): one inverse FFT. Only the global size of z is checked.
+
+  Level: intermediate
+
+.seealso: `AdhSurfaceSetFromOptions()`, `AdhSurfaceWriteHeights()`, `AdhSurfaceView()`, `AdhGridCreateVector()`
+@*/
 PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
 {
   double  *data;
@@ -325,6 +383,26 @@ PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSurfaceWriteHeights - Writes the heights of a random rough surface to a viewer as the (Ny, Nx) dataset name
+
+  Collective
+
+  Input Parameters:
++ grid   - the grid; it is set up here if it is not yet
+. s      - the surface's parameters; on return also the resolved parameters and the realised statistics, as
+           `AdhSurfaceGenerate()` records them
+. viewer - the viewer, such as an HDF5 viewer
+- name   - the name of the dataset
+
+  Notes:
+  It generates the surface again, the same heights z as `AdhSurfaceGenerate()` (not the indenter's profile), and writes them
+  with `VecView()` from the generator's own array, in its own row distribution, without a grid vector.
+
+  Level: intermediate
+
+.seealso: `AdhSurfaceGenerate()`, `AdhSurfaceSetFromOptions()`, `AdhSolverWriteOutput()`
+@*/
 PetscErrorCode AdhSurfaceWriteHeights(AdhGrid grid, AdhSurface *s, PetscViewer viewer, const char name[])
 {
   double  *data;
@@ -344,6 +422,23 @@ PetscErrorCode AdhSurfaceWriteHeights(AdhGrid grid, AdhSurface *s, PetscViewer v
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSurfaceView - Prints the parameters of a random rough surface and, once generated, its realised statistics
+
+  Collective
+
+  Input Parameters:
++ s      - the surface's parameters
+- viewer - an ASCII viewer, or `NULL` for `PETSC_VIEWER_STDOUT_WORLD`
+
+  Notes:
+  Before `AdhSurfaceGenerate()` it prints the requested parameters, with the defaults in words; after, the wavelengths used, the
+  number of Fourier modes and the realised rms height and slope, mean and range of heights. Other viewer types print nothing.
+
+  Level: intermediate
+
+.seealso: `AdhSurfaceSetFromOptions()`, `AdhSurfaceGenerate()`, `AdhSolverView()`
+@*/
 PetscErrorCode AdhSurfaceView(const AdhSurface *s, PetscViewer viewer)
 {
   PetscBool isascii;

@@ -41,6 +41,24 @@ struct _n_AdhTransform {
   VecScatter toFFT;                                   /* grid rows -> FFTW's (NULL: they are the same) */
 };
 
+/*@
+  AdhTransformRelease_Private - Releases one reference to a grid's shared FFT transform, destroying it with the last one
+
+  Collective
+
+  Input Parameter:
+. t - the transform, or a pointer to `NULL`; *t is `NULL` on return
+
+  Notes:
+  A transform of one size (its in-place array, its forward and backward plans, their single-precision twins once made, and the
+  redistribution between the grid's rows and FFTW's where they differ) is shared by the operators of one grid: the grid holds one
+  reference and each operator one (they share its array: only one multiply runs at a time). Only the last release frees
+  anything, and that one is collective (FFTW-MPI plans, a parallel vector and a scatter).
+
+  Level: developer
+
+.seealso: `AdhGridDestroy()`, `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`
+@*/
 PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
 {
   PetscFunctionBegin;
@@ -206,8 +224,28 @@ static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c, 
   PetscFunctionReturn(0);
 }
 
-/* Whether the grid's rows are this operator's transform rows (the periodic grid): then
-   MatAdhComplianceMultOnSet applies it to values on a set of local points directly. */
+/*@
+  MatAdhComplianceHasDirectLayout - Tells whether an operator's transform has the grid's rows (for `MatAdhComplianceMultOnSet()`)
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance, stiffness or mean compliance of adhbem
+
+  Output Parameter:
+. direct - `PETSC_TRUE` when every rank's grid rows are its rows of the operator's transform: then
+           `MatAdhComplianceMultOnSet()` applies the operator to values on a set of local points directly
+
+  Notes:
+  The periodic compliance and the stiffness have the direct layout whenever the grid splits its rows as FFTW does, the usual
+  case (`AdhGridSetUp()`). The free compliance has it on one rank only: on several, the zero-padded transform leaves the
+  physical rows on half the ranks, and a scatter moves them. The answer is the same on every rank. Any other `Mat` is an error
+  (`PETSC_ERR_ARG_WRONG`).
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceMultOnSet()`, `MatAdhComplianceSetSinglePrecision()`, `MatCreateAdhCompliance()`
+@*/
 PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 {
   Compliance     *c;
@@ -255,9 +293,28 @@ static PetscErrorCode EnsureSingle(AdhTransform t, MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
-/* Whether MatAdhComplianceMultOnSet applies K in single precision: float transforms, half the
-   bytes to move, for solves that stop at a loose tolerance (-adh_cascade_single). Collective
-   when it turns single precision on (the float plans are made then). */
+/*@
+  MatAdhComplianceSetSinglePrecision - Sets whether `MatAdhComplianceMultOnSet()` applies an operator in single precision
+
+  Collective
+
+  Input Parameters:
++ K      - a compliance, stiffness or mean compliance (then its compliance) of adhbem
+- single - `PETSC_TRUE` for single precision, `PETSC_FALSE` for double; the same on every rank
+
+  Notes:
+  Single precision means float transforms, half the bytes to move, for solves that stop at a loose tolerance (the solver's
+  -adh_cascade_single). It changes `MatAdhComplianceMultOnSet()` only: `MatMult()` stays in double precision.
+
+  Turning single precision on needs the direct layout (`MatAdhComplianceHasDirectLayout()`, else `PETSC_ERR_ARG_WRONGSTATE`)
+  and is collective when the float plans are not made yet: they are made then, once per transform, in the double transform's
+  layout with plans of the same family and planner effort, and shared by the grid's operators of that size. If FFTW cannot
+  allocate or plan them, every rank fails (`PETSC_ERR_LIB`). Turning it off communicates nothing.
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceMultOnSet()`, `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceGetSingleMultCount()`
+@*/
 PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
 {
   Compliance     *c;
@@ -271,8 +328,34 @@ PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
   PetscFunctionReturn(0);
 }
 
-/* yC = (K xC) on a set of n local grid points (increasing offsets local[] into this rank's rows),
-   xC zero off the set: R K R^T without spreading onto grid vectors. Needs the direct layout. */
+/*@
+  MatAdhComplianceMultOnSet - Applies an operator restricted to a set of grid points, yC = R K R^T xC, without grid vectors
+
+  Collective
+
+  Input Parameters:
++ K     - a compliance, stiffness or mean compliance of adhbem with the direct layout
+. n     - the number of this rank's points in the set (0 if none)
+. local - their offsets into this rank's rows, (j - ys) Nx + i, in increasing order
+- xC    - the values on the set: n local entries, in the order of local[]
+
+  Output Parameter:
+. yC - (K xC) on the set, n local entries in the same order
+
+  Notes:
+  R is the restriction to the set, so xC stands for a grid vector that is zero off the set. The values go straight into the
+  transform's array and come straight out of it: no grid vectors, no scatter. This needs the grid's rows to be the transform's
+  (`MatAdhComplianceHasDirectLayout()`, else `PETSC_ERR_ARG_WRONGSTATE`).
+
+  It is one FFT pair, counted by `MatAdhComplianceGetMultCount()`, in single precision after
+  `MatAdhComplianceSetSinglePrecision()`. Every rank must call it. For a mean compliance, c0 sum(xC)/N is added to every entry,
+  the sum taken over the whole of xC.
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceSetSinglePrecision()`, `MatCreateAdhMeanCompliance()`,
+          `AdhGridGetOwnership()`
+@*/
 PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local[], Vec xC, Vec yC)
 {
   Compliance        *c;
@@ -664,6 +747,51 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatCreateAdhCompliance - Creates the half-space compliance K (u = K p) of a grid, a `MATSHELL` applied with distributed FFTW
+
+  Collective
+
+  Input Parameters:
++ grid     - the grid; it is set up here if it is not yet
+. Estar    - the reduced modulus E*, positive and finite
+- boundary - `ADH_BOUNDARY_FREE` (an isolated contact: exact linear convolution on the zero-padded grid) or
+             `ADH_BOUNDARY_PERIODIC` (a periodic cell)
+
+  Output Parameter:
+. K - the compliance
+
+  Options Database Keys:
++ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
+. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
+- -adh_fftw_layout <auto,serial,transposed> - plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size
+                                              (and timing); several ranks always use FFTW-MPI's
+
+  Notes:
+  K maps the pressures p, uniform on each element, to the displacements u at the elements' centres, on the layout of
+  `AdhGridCreateVector()`. With a free boundary its entries are Love's influence coefficients (`AdhLoveCoefficient()`), applied
+  as a cyclic convolution on a zero-padded 2Ny x 2Nx grid, which equals the exact linear one on the Ny x Nx grid. With a periodic
+  boundary the multiplier is the spectral symbol 2/(E*|q|), q = 2 pi (kx/Lx, ky/Ly), on the Ny x Nx cell, with the mode q = 0
+  set to zero: the mean displacement is left to the indentation, and the constant vector is in K's null space.
+
+  A multiply is one forward and one backward real-to-complex FFT; where the grid's rows are not the transform's
+  (`MatAdhComplianceHasDirectLayout()`) a scatter built once also moves the values between the two layouts. K is symmetric
+  (`MatMultTranspose()` is `MatMult()`), marked SPD with a free boundary, has block size Nx, and provides `MatGetDiagonal()`
+  (a constant) and an ASCII `MatView()`.
+
+  The operators of a grid share one transform of each size, planned for the first operator that asks: the options of a later
+  one do not change it. The options are read under the grid's prefix. The grid's fftw_effort, when set, wins over
+  -adh_fftw_planner; an explicit -adh_fftw_timelimit wins over the grid's fftw_timelimit. A time limit applies on one rank only
+  (ranks that time their own trials could take different planning paths into different collectives). Under auto, a transform
+  of up to 2^22 points gets serial plans; a larger one gets the faster of the two families, timed, under a measuring planner,
+  and FFTW-MPI's under estimate. Should one family fail to plan on one rank, the other is tried.
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhGridCreateVector()`, `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceGetLambdaMin()`,
+          `MatAdhComplianceGetRowNormBound()`, `MatAdhComplianceGetMultCount()`, `MatCreateAdhPeriodicStiffness()`,
+          `MatCreateAdhMeanCompliance()`
+@*/
 PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary boundary, Mat *K)
 {
   PetscFunctionBegin;
@@ -672,6 +800,36 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatCreateAdhPeriodicStiffness - Creates the periodic half-space stiffness E*|q|/2 of a grid, a `MATSHELL` applied with FFTW
+
+  Collective
+
+  Input Parameters:
++ grid  - the grid; it is set up here if it is not yet
+- Estar - the reduced modulus E*, positive and finite
+
+  Output Parameter:
+. S - the stiffness
+
+  Options Database Keys:
++ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
+. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
+- -adh_fftw_layout <auto,serial,transposed> - plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size
+                                              (and timing)
+
+  Notes:
+  The stiffness is the inverse of the periodic compliance's symbol 2/(E*|q|); the solver uses it to precondition CG on the
+  contact set. The mean mode (q = 0) gets the value of the lowest nonzero wave number 2 pi/max(Lx, Ly), so S is positive
+  definite (marked SPD), with smallest eigenvalue E* pi/max(Lx, Ly) (`MatAdhComplianceGetLambdaMin()`).
+
+  S is made as `MatCreateAdhCompliance()` makes K, with the same options, on the grid's Ny x Nx transform, shared with a
+  periodic compliance of the same grid. The MatAdhCompliance functions accept it as they accept a compliance.
+
+  Level: advanced
+
+.seealso: `MatCreateAdhCompliance()`, `MatAdhComplianceMultOnSet()`, `MatAdhComplianceGetLambdaMin()`
+@*/
 PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat *S)
 {
   PetscFunctionBegin;
@@ -679,6 +837,31 @@ PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat 
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatAdhComplianceGetLambdaMin - Gets a lower bound on the smallest eigenvalue of a compliance K and of each submatrix K_CC
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance or stiffness
+
+  Output Parameter:
+. lambda_min - the bound
+
+  Notes:
+  Free boundary: the smallest eigenvalue of the symmetric circulant on the zero-padded grid (zero if it is negative), of which K
+  and every K_CC are principal submatrices (Cauchy interlacing). Periodic: zero, since the constant vector is in K's null space;
+  `MatAdhComplianceGetSetLambdaMin()` gives a positive bound for sets smaller than the grid. Stiffness: E* pi/max(Lx, Ly), its
+  smallest eigenvalue.
+
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceGetSetLambdaMin()`, `MatCreateAdhCompliance()`, `MatAdhComplianceGetRowNormBound()`
+@*/
 PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
 {
   Compliance *c;
@@ -689,10 +872,32 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
   PetscFunctionReturn(0);
 }
 
-/* A lower bound on the smallest eigenvalue of K_CC for any set C of m of the N grid points.
-   free: lambda_min (Cauchy interlacing). periodic: a vector v that vanishes off C has a mean
-   component of norm |sum v| / sqrt(N) <= sqrt(m/N) |v|, and K is at least lambda_meanfree on the
-   rest, so v^T K v >= lambda_meanfree (1 - m/N) |v|^2; zero for the whole grid (K is singular). */
+/*@
+  MatAdhComplianceGetSetLambdaMin - Gets a lower bound on the smallest eigenvalue of K_CC for any set C of m grid points
+
+  Not Collective
+
+  Input Parameters:
++ K - a compliance or stiffness
+- m - the number of points in the set, at most N = Nx Ny
+
+  Output Parameter:
+. lambda_min - the bound
+
+  Notes:
+  Free boundary (and stiffness): the bound of `MatAdhComplianceGetLambdaMin()`, by Cauchy interlacing. Periodic: a vector v that
+  vanishes off C has a mean component of norm |sum v|/sqrt(N) <= sqrt(m/N) |v|, and K is at least lambda_meanfree (its
+  smallest eigenvalue on mean-free vectors, the symbol at the largest wave number) on the rest, so
+  v^T K v >= lambda_meanfree (1 - m/N) |v|^2. The bound shrinks to zero as C fills the cell, where K_CC becomes singular.
+
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceGetLambdaMin()`, `MatCreateAdhCompliance()`, `MatCreateAdhMeanCompliance()`
+@*/
 PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lambda_min)
 {
   Compliance *c;
@@ -704,6 +909,27 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatAdhComplianceGetGridSize - Gets the size of the grid behind a compliance
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance or stiffness
+
+  Output Parameters:
++ Nx - the number of points per row (or `NULL`)
+- Ny - the number of rows (or `NULL`)
+
+  Notes:
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: advanced
+
+.seealso: `MatCreateAdhCompliance()`, `AdhGridSetSizes()`
+@*/
 PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
 {
   Compliance *c;
@@ -715,6 +941,30 @@ PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatAdhComplianceGetRowNormBound - Gets an upper bound on the 2-norm of every row of a compliance, max_k |K e_k|
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance or stiffness
+
+  Output Parameter:
+. rho - the bound
+
+  Notes:
+  A change dp of the pressure changes every displacement by at most rho |dp|_2. rho is the 2-norm of a row of the circulant
+  behind the multiplier (all its rows have the same norm), from the spectrum by Parseval, without a multiply; every row of K, and
+  every part of one, is part of such a row (free boundary: the zero-padded circulant holds every offset of the grid).
+
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceGetLambdaMin()`, `MatCreateAdhCompliance()`
+@*/
 PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
 {
   Compliance *c;
@@ -736,6 +986,32 @@ static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatCreateAdhMeanCompliance - Creates K + c0 (1 1^T)/N, a periodic compliance whose mean mode has the compliance c0
+
+  Collective
+
+  Input Parameters:
++ K  - a periodic compliance from `MatCreateAdhCompliance()`
+- c0 - the compliance of the mean mode, > 0
+
+  Output Parameter:
+. A - the operator, a `MATSHELL`
+
+  Notes:
+  With c0 > 0 every K_CC is positive definite, the whole cell included; the eigenvalues of A are K's on mean-free vectors and
+  c0. Under force control the mean pressure is given, so the mean displacement can be carried by any c0 and subtracted
+  afterwards.
+
+  A keeps a reference to K, released when A is destroyed, has K's layout, provides `MatMult()` only, and is marked SPD.
+  `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceSetSinglePrecision()` and `MatAdhComplianceMultOnSet()` accept it (they
+  act on K, the last adding the mean term); the other MatAdhComplianceGet functions need K itself. Neither the kind of K
+  nor c0 > 0 is checked.
+
+  Level: advanced
+
+.seealso: `MatCreateAdhCompliance()`, `MatAdhComplianceMultOnSet()`, `MatAdhComplianceGetSetLambdaMin()`
+@*/
 PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
 {
   MeanCompliance *m;
@@ -760,6 +1036,29 @@ PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
   PetscFunctionReturn(0);
 }
 
+/*@
+  MatAdhComplianceGetMultCount - Gets the number of multiplies (FFT pairs) an operator has applied so far
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance or stiffness
+
+  Output Parameter:
+. count - the number of multiplies
+
+  Notes:
+  It counts `MatMult()`, `MatMultTranspose()` and `MatAdhComplianceMultOnSet()`, in double and in single precision, since the
+  operator was created.
+
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: intermediate
+
+.seealso: `MatAdhComplianceGetSingleMultCount()`, `MatCreateAdhCompliance()`
+@*/
 PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
 {
   Compliance *c;
@@ -770,7 +1069,28 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
   PetscFunctionReturn(0);
 }
 
-/* How many of those ran in single precision (MatAdhComplianceSetSinglePrecision). */
+/*@
+  MatAdhComplianceGetSingleMultCount - Gets how many of an operator's multiplies ran in single precision
+
+  Not Collective
+
+  Input Parameter:
+. K - a compliance or stiffness
+
+  Output Parameter:
+. count - the number of multiplies in single precision (`MatAdhComplianceSetSinglePrecision()`)
+
+  Notes:
+  They are counted in `MatAdhComplianceGetMultCount()` too.
+
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
+  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
+  does).
+
+  Level: advanced
+
+.seealso: `MatAdhComplianceGetMultCount()`, `MatAdhComplianceSetSinglePrecision()`
+@*/
 PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat K, PetscInt *count)
 {
   Compliance *c;

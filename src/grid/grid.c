@@ -2,6 +2,28 @@
 #include <fftw3-mpi.h>
 #include "adhbem.h"
 
+/*@
+  AdhGridCreate - Creates a grid of Nx x Ny rectangular elements, to be distributed by whole rows over the ranks of a communicator
+
+  Logically Collective
+
+  Input Parameter:
+. comm - the MPI communicator
+
+  Output Parameter:
+. grid - the new grid
+
+  Notes:
+  The grid starts as 64 x 64 elements on a 1 x 1 domain: set its sizes with `AdhGridSetSizes()` or `AdhGridSetFromOptions()`,
+  then call `AdhGridSetUp()`, which distributes the rows. It initialises the package (`AdhInitializePackage()`) if needed.
+
+  Nothing is communicated here, but every rank of comm must call it, since the later calls on the grid are collective. The grid
+  keeps comm as it is (not duplicated): it must stay valid while the grid lives.
+
+  Level: intermediate
+
+.seealso: `AdhGridSetSizes()`, `AdhGridSetFromOptions()`, `AdhGridSetUp()`, `AdhGridView()`, `AdhGridDestroy()`
+@*/
 PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
 {
   AdhGrid g;
@@ -19,6 +41,27 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridSetSizes - Sets the number of elements per side and the side lengths of a grid's domain
+
+  Logically Collective; Nx, Ny, Lx and Ly must have the same values on every rank
+
+  Input Parameters:
++ g  - the grid, not yet set up
+. Nx - the number of elements along x (the points of a row)
+. Ny - the number of elements along y (the rows, the distributed direction)
+. Lx - the side length of the domain along x
+- Ly - the side length of the domain along y
+
+  Notes:
+  The values are checked by `AdhGridSetUp()`, which also sets the element sizes hx = Lx/Nx and hy = Ly/Ny: Nx and Ny positive,
+  Lx and Ly positive and finite, and at least as many rows as ranks. Once the grid is set up its sizes cannot change
+  (`PETSC_ERR_ORDER`).
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhGridSetFromOptions()`, `AdhGridSetUp()`
+@*/
 PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly)
 {
   PetscFunctionBegin;
@@ -27,6 +70,28 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridSetFromOptions - Sets a grid's sizes from the options database
+
+  Collective
+
+  Input Parameter:
+. g - the grid
+
+  Options Database Keys:
++ -adh_n <N or Nx,Ny>     - the number of elements per side: one value for both sides, or two
+- -adh_size <L or Lx,Ly>  - the side lengths of the domain: one value for both sides, or two
+
+  Notes:
+  The options are read under the grid's options prefix (the solver's, for the grid of an `AdhSolver`); an option given without
+  a value is an error. The values are checked by `AdhGridSetUp()`.
+
+  Call it before `AdhGridSetUp()`: unlike `AdhGridSetSizes()`, it does not check that the grid is not set up yet.
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhGridSetSizes()`, `AdhGridSetUp()`
+@*/
 PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
 {
   PetscInt  n[2] = {g->Nx, g->Ny}, nn = 2;
@@ -52,6 +117,25 @@ PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridSetUp - Checks a grid's sizes and distributes its rows over the ranks
+
+  Collective
+
+  Input Parameter:
+. g - the grid
+
+  Notes:
+  It checks that Nx and Ny are positive, that Lx and Ly are positive and finite and that there are at least as many rows as ranks
+  (every rank owns at least one row); it sets the element sizes hx = Lx/Nx and hy = Ly/Ny and gives each rank a range of
+  whole rows, in rank order. The rows are split as FFTW-MPI splits those of an Ny x Nx real-to-complex transform, so that the
+  operators on the periodic grid use grid vectors in place; where that split would leave a rank without rows, the rows are
+  balanced to within one instead. A grid that is set up already is left as it is.
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhGridSetSizes()`, `AdhGridGetOwnership()`, `AdhGridGetRowsPerRank()`, `AdhGridCreateVector()`
+@*/
 PetscErrorCode AdhGridSetUp(AdhGrid g)
 {
   PetscMPIInt size;
@@ -95,6 +179,26 @@ PetscErrorCode AdhGridSetUp(AdhGrid g)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridGetOwnership - Gets the range of rows of a grid that this rank owns
+
+  Not Collective
+
+  Input Parameter:
+. g - the grid, set up
+
+  Output Parameters:
++ ys - the first row this rank owns (or `NULL`)
+- ym - the number of rows it owns (or `NULL`)
+
+  Notes:
+  This rank owns the points (i, j) with j in [ys, ys + ym) and every i in [0, Nx): the entries [ys Nx, (ys + ym) Nx) of a grid
+  vector, whose global ordering is j Nx + i.
+
+  Level: intermediate
+
+.seealso: `AdhGridSetUp()`, `AdhGridGetRowsPerRank()`, `AdhGridCreateVector()`
+@*/
 PetscErrorCode AdhGridGetOwnership(AdhGrid g, PetscInt *ys, PetscInt *ym)
 {
   PetscFunctionBegin;
@@ -104,6 +208,25 @@ PetscErrorCode AdhGridGetOwnership(AdhGrid g, PetscInt *ys, PetscInt *ym)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridGetRowsPerRank - Gets the number of rows that every rank of a grid owns
+
+  Collective
+
+  Input Parameter:
+. g - the grid, set up
+
+  Output Parameter:
+. ly - an array of the communicator's size: the number of rows of each rank, in rank order
+
+  Notes:
+  The array is allocated here: free it with `PetscFree()`. The ranks own consecutive ranges of rows in rank order, so a rank's
+  first row is the sum of ly over the ranks before it.
+
+  Level: developer
+
+.seealso: `AdhGridGetOwnership()`, `AdhGridCreateRowSF()`
+@*/
 PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
 {
   PetscMPIInt size;
@@ -116,6 +239,32 @@ PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridCreateRowSF - Creates a star forest that fetches whole rows of grid data from the ranks that own them
+
+  Collective
+
+  Input Parameters:
++ g     - the grid, set up
+. nrows - the number of rows this rank asks for
+- rows  - the global rows, in [0, Ny), that this rank asks for (usually rows that other ranks own); a row may be listed more
+          than once
+
+  Output Parameter:
+. sf - the star forest
+
+  Notes:
+  The unit of the star forest is a whole row: it has one root per row this rank owns, in order, and one leaf per entry of
+  rows[], in the order given (contiguous leaves). Communicate with it in the row type of `AdhGridGetRowType()`: `MPIU_SCALAR`
+  for the rows of a grid vector's array, `MPI_CHAR` for a byte per point. The grid keeps the type; destroy the star forest with
+  `PetscSFDestroy()`.
+
+  A row outside [0, Ny) is an error raised on the rank that lists it (`PETSC_COMM_SELF`).
+
+  Level: developer
+
+.seealso: `AdhGridGetRowType()`, `AdhGridGetRowsPerRank()`, `AdhGridGetOwnership()`, `PetscSFBcastBegin()`
+@*/
 PetscErrorCode AdhGridCreateRowSF(AdhGrid g, PetscInt nrows, const PetscInt rows[], PetscSF *sf)
 {
   PetscInt    *ly, *start;
@@ -144,6 +293,26 @@ PetscErrorCode AdhGridCreateRowSF(AdhGrid g, PetscInt nrows, const PetscInt rows
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridGetRowType - Gets the MPI datatype of one row of a grid: Nx contiguous values of a base type
+
+  Not Collective
+
+  Input Parameters:
++ g    - the grid, set up
+- base - the type of one value: `MPIU_SCALAR` or `MPI_CHAR`
+
+  Output Parameter:
+. row - the committed datatype of a row
+
+  Notes:
+  The type is made on first use and kept by the grid, which frees it in `AdhGridDestroy()`: do not free it. It is the unit of
+  the star forests of `AdhGridCreateRowSF()`. Any other base type is an error (`PETSC_ERR_SUP`).
+
+  Level: developer
+
+.seealso: `AdhGridCreateRowSF()`, `AdhGridDestroy()`
+@*/
 PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row)
 {
   const PetscInt k = base == MPIU_SCALAR ? 0 : base == MPI_CHAR ? 1 : -1;
@@ -159,6 +328,26 @@ PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridCreateVector - Creates a vector on a grid, with the rows of each rank
+
+  Collective
+
+  Input Parameter:
+. g - the grid; it is set up here if it is not yet
+
+  Output Parameter:
+. v - the new vector, its values not set
+
+  Notes:
+  The vector is a `VECSTANDARD` of Nx Ny entries in the order j Nx + i, ym Nx of them on each rank (its rows, see
+  `AdhGridGetOwnership()`), with block size Nx, a block per row: PETSc's HDF5 viewer writes it as an (Ny, Nx) dataset. It has
+  the layout of the grid's operators, such as `MatCreateAdhCompliance()`. Destroy it with `VecDestroy()`.
+
+  Level: intermediate
+
+.seealso: `AdhGridGetOwnership()`, `AdhGridGetCoordinates()`, `AdhFieldCheck()`, `MatCreateAdhCompliance()`
+@*/
 PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
 {
   PetscFunctionBegin;
@@ -170,6 +359,28 @@ PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridGetCoordinates - Gets the centre of an element of a grid
+
+  Not Collective
+
+  Input Parameters:
++ g - the grid, set up
+. i - the element's column, in [0, Nx)
+- j - the element's row, in [0, Ny)
+
+  Output Parameters:
++ x - the x coordinate of its centre (or `NULL`)
+- y - the y coordinate of its centre (or `NULL`)
+
+  Notes:
+  x = (i - Nx/2) hx and y = (j - Ny/2) hy, with integer division: the centre of element (Nx/2, Ny/2) is the origin. Neither the
+  indices nor the set-up are checked; before `AdhGridSetUp()` the element sizes, and so the coordinates, are zero.
+
+  Level: intermediate
+
+.seealso: `AdhGridGetOwnership()`, `AdhGridSetSizes()`
+@*/
 PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y)
 {
   PetscFunctionBegin;
@@ -178,6 +389,23 @@ PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscRea
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridView - Prints a grid's sizes
+
+  Collective
+
+  Input Parameters:
++ g      - the grid
+- viewer - an ASCII viewer, or `NULL` for the standard output of the grid's communicator
+
+  Notes:
+  One line: the number of elements per side, the element sizes (zero before `AdhGridSetUp()`), the domain and the number of
+  ranks. Other viewer types print nothing.
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhGridSetUp()`, `AdhSolverView()`
+@*/
 PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
 {
   PetscBool   isascii;
@@ -193,6 +421,23 @@ PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGridDestroy - Destroys a grid
+
+  Collective
+
+  Input Parameter:
+. grid - the grid; nothing happens when *grid is `NULL`
+
+  Notes:
+  It releases the grid's references to its FFT transforms, frees its row datatypes (`AdhGridGetRowType()`) and sets *grid to
+  `NULL`. The operators made on the grid (`MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`) hold their own
+  reference to the transforms and keep working after the grid is destroyed.
+
+  Level: intermediate
+
+.seealso: `AdhGridCreate()`, `AdhTransformRelease_Private()`
+@*/
 PetscErrorCode AdhGridDestroy(AdhGrid *grid)
 {
   PetscFunctionBegin;

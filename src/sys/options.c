@@ -15,6 +15,24 @@ static const char *const AdhOptionNames[] = {
   "adh_fields", "adh_fields_stride", "adh_output", "adh_fftw_planner", "adh_fftw_timelimit", "adh_fftw_layout", "adh_view", "adh_traceback", "adh_checkpoint", "adh_checkpoint_every", "adh_restart",
 };
 
+/*@
+  AdhGetOptionNames - Gets the names of adhbem's own options
+
+  Not Collective
+
+  Output Parameters:
++ n     - the number of names
+- names - the names, without the leading '-' and the prefix (adh_gamma, ...); a static array, not to be freed
+
+  Notes:
+  These are the options adhbem reads: `AdhSolverSetUp()` stops at any other option under the solver's prefix that starts with
+  adh_ (a misspelling), naming the nearest of these. The options of the solver's KSPs and preconditioners (-adh_ksp_*,
+  -adh_pc_*, -adh_local_ksp_*) are PETSc's and are not in the list.
+
+  Level: advanced
+
+.seealso: `AdhSolverSetFromOptions()`, `AdhSolverSetUp()`
+@*/
 PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names)
 {
   PetscFunctionBegin;

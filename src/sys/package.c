@@ -17,6 +17,22 @@ static PetscErrorCode AdhFinalizePackage(void)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhInitializePackage - Initialises the adhbem package: its class id, its log events and FFTW-MPI
+
+  Not Collective
+
+  Notes:
+  It registers the class "Adhesive BEM" (`ADH_CLASSID`) and the log events AdhFFTForward, AdhFFTBackward, AdhComplMult,
+  AdhStepSolve, AdhSetUpdate, AdhPredict, AdhDetachTest, AdhAttachLimits and AdhLocalSolve, initialises FFTW-MPI in double and
+  single precision, and registers with `PetscRegisterFinalize()` the clean-up of FFTW-MPI. It is done once: later calls return
+  at once, until `PetscFinalize()`. `AdhGridCreate()`, `AdhGridSetUp()` and the operators' constructors call it; the solver's
+  types register with the solver.
+
+  Level: developer
+
+.seealso: `AdhGridCreate()`, `MatCreateAdhCompliance()`, `AdhSolverCreate()`
+@*/
 PetscErrorCode AdhInitializePackage(void)
 {
   PetscFunctionBegin;

@@ -9,9 +9,24 @@
 #include <stdlib.h>
 #include "adhbem.h"
 
-/* Sets OpenBLAS to one thread unless OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS or OMP_NUM_THREADS
-   chose a count; says what it did under -info. OpenBLAS's functions are found at run time (the
-   executable sees its libraries globally), so that another BLAS needs nothing. */
+/*@
+  AdhUseOneBLASThread - Sets OpenBLAS to one thread per rank, unless the environment chose a count
+
+  Not Collective
+
+  Notes:
+  OpenBLAS is set to one thread unless OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS or OMP_NUM_THREADS is set; another BLAS is left as
+  it is. What it did is reported through `PetscInfo()` (-info). OpenBLAS's functions are looked up at run time (an executable
+  sees its libraries globally), so that another BLAS needs nothing.
+
+  The ranks are the parallelism: OpenBLAS's threads, which spin between long vector updates, otherwise take CPU time and cores
+  from the ranks. It is meant for an executable; a library must not change its host's threads, so the Python layer leaves this
+  to the user (OPENBLAS_NUM_THREADS=1).
+
+  Level: advanced
+
+.seealso: `AdhInitializePackage()`
+@*/
 PetscErrorCode AdhUseOneBLASThread(void)
 {
   void (*set_threads)(int);

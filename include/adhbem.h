@@ -44,7 +44,6 @@ struct _n_AdhGrid {
   AdhTransform transforms[2]; /* physical size and zero-padded (2Ny x 2Nx), made on first use */
   MPI_Datatype row_types[2];  /* one row of scalars, of chars (AdhGridGetRowType), made on first use */
 };
-PETSC_EXTERN PetscErrorCode AdhTransformRelease_Private(AdhTransform *);
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhGridSetSizes(AdhGrid, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly);

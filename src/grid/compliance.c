@@ -14,94 +14,9 @@
    leaves the physical rows on half the ranks; there one VecScatter, built once, moves the grid
    layout to FFTW's and back. Both layouts order the entries j*Nx + i, so it is a pure
    redistribution. */
-#include <fftw3-mpi.h>
-#include "adhbem.h"
+#include "grid/gridimpl.h"
 
 const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOUNDARY_", NULL};
-
-/* A distributed in-place r2c transform of one size with its array, plans and (where the grid's
-   rows are not FFTW's) the redistribution. The operators of one grid share it (the compliance and
-   the stiffness of a periodic cell: one array, one pair of plans, and their single-precision twins
-   once asked for); only one multiply runs at a time. The grid holds a reference and each operator
-   one. */
-struct _n_AdhTransform {
-  PetscInt   refct;
-  ptrdiff_t  n0, n1;                                  /* transform size: rows (y), columns (x) */
-  ptrdiff_t  stride;                                  /* doubles per row of the in-place real array */
-  ptrdiff_t  local_n0, local_0_start, local_n1, local_1_start;
-  PetscBool  serial;                                  /* serial plans (one rank): spectrum [ky][kx] instead of FFTW-MPI's transposed [kx][ky] */
-  PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
-  double    *data;                                    /* in-place transform array */
-  fftw_plan  forward, backward;
-  unsigned   flags;                                   /* the planner's effort the plans were made with, */
-  double     timelimit;                               /* and FFTW's time limit for planning */
-  float     *fdata;                                   /* the same transform in single precision (MatAdhComplianceSetSinglePrecision): */
-  fftwf_plan fforward, fbackward;                     /* made on first use, NULL before */
-  Vec        xfft;                                    /* physical values in FFTW's row distribution */
-  VecScatter toFFT;                                   /* grid rows -> FFTW's (NULL: they are the same) */
-};
-
-/*@
-  AdhTransformRelease_Private - Releases one reference to a grid's shared FFT transform, destroying it with the last one
-
-  Collective
-
-  Input Parameter:
-. t - the transform, or a pointer to `NULL`; *t is `NULL` on return
-
-  Notes:
-  A transform of one size (its in-place array, its forward and backward plans, their single-precision twins once made, and the
-  redistribution between the grid's rows and FFTW's where they differ) is shared by the operators of one grid: the grid holds one
-  reference and each operator one (they share its array: only one multiply runs at a time). Only the last release frees
-  anything, and that one is collective (FFTW-MPI plans, a parallel vector and a scatter).
-
-  Level: developer
-
-.seealso: `AdhGridDestroy()`, `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`
-@*/
-PetscErrorCode AdhTransformRelease_Private(AdhTransform *t)
-{
-  PetscFunctionBegin;
-  if (!*t || --(*t)->refct > 0) {
-    *t = NULL;
-    PetscFunctionReturn(0);
-  }
-  fftw_destroy_plan((*t)->forward);
-  fftw_destroy_plan((*t)->backward);
-  fftw_free((*t)->data);
-  if ((*t)->fforward) fftwf_destroy_plan((*t)->fforward);
-  if ((*t)->fbackward) fftwf_destroy_plan((*t)->fbackward);
-  fftwf_free((*t)->fdata);
-  PetscCall(VecDestroy(&(*t)->xfft));
-  PetscCall(VecScatterDestroy(&(*t)->toFFT));
-  PetscCall(PetscFree(*t));
-  PetscFunctionReturn(0);
-}
-
-/* What the multiplier is: the compliance (free or periodic) or the periodic stiffness. */
-typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
-
-typedef struct {
-  MPI_Comm     comm;
-  Kind         kind;
-  AdhBoundary  boundary;
-  PetscReal    Estar, hx, hy, Lx, Ly;
-  PetscInt     Nx, Ny;
-  AdhTransform t;                                     /* the grid's transform of this size (shared) */
-  double      *multiplier;                            /* real kernel spectrum / (n0 n1), in the spectrum's layout (MultIndex); even in ky, so only ky = 0 .. n0/2 are kept */
-  ptrdiff_t    nhalf;                                 /* n0/2 + 1 */
-  PetscReal    lambda_min, diagonal;
-  PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
-  PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
-  PetscInt     nmult, nmult_single;                   /* multiplies so far, and of them in single precision */
-  PetscBool    single;                                /* MatAdhComplianceMultOnSet in single precision */
-} Compliance;
-
-/* Where the multiplier of local kx column a and row ky = k0 <= n0/2 is kept. */
-static inline ptrdiff_t MultIndex(const Compliance *c, ptrdiff_t a, ptrdiff_t k0)
-{
-  return c->t->serial ? k0 * c->t->local_n1 + a : a * c->nhalf + k0;
-}
 
 /* The multiplier applied to a spectrum of complex type T (double or float) in the transform's
    layout: serial, rows ky = k0 of n1/2 + 1 modes kx (row n0 - k0 has row k0's multipliers);
@@ -184,27 +99,6 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
-   force control the mean pressure is given, so the mean displacement can be carried by any c0 and
-   subtracted afterwards; with it every K_CC, the whole cell included, is positive definite. */
-typedef struct {
-  Mat       K;
-  PetscReal c0, N;
-} MeanCompliance;
-
-static PetscErrorCode MatMult_MeanCompliance(Mat A, Vec x, Vec y)
-{
-  MeanCompliance *m;
-  PetscScalar     sum;
-
-  PetscFunctionBegin;
-  PetscCall(MatShellGetContext(A, &m));
-  PetscCall(VecSum(x, &sum));
-  PetscCall(MatMult(m->K, x, y));
-  PetscCall(VecShift(y, m->c0 * sum / m->N));
-  PetscFunctionReturn(0);
-}
-
 /* The compliance or stiffness shell behind K (K itself, or the one a mean compliance wraps, then
    with the wrapper's context), or an error naming the call. */
 static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c, MeanCompliance **mean)
@@ -214,7 +108,7 @@ static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c, 
   PetscFunctionBegin;
   *mean = NULL;
   PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
-  if (mult == (void (*)(void))MatMult_MeanCompliance) {
+  if (mult == (void (*)(void))MatMult_AdhMeanCompliance_Private) {
     PetscCall(MatShellGetContext(K, mean));
     K = (*mean)->K;
     PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
@@ -257,42 +151,6 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
   PetscFunctionReturn(0);
 }
 
-/* The single-precision twin of t (the same layout: FFTW-MPI distributes by size, not by type),
-   with plans of the same family and effort; collective. */
-static PetscErrorCode EnsureSingle(AdhTransform t, MPI_Comm comm)
-{
-  ptrdiff_t alloc, ln0, l0s, ln1, l1s;
-  PetscBool ok;
-
-  PetscFunctionBegin;
-  if (t->fforward && t->fbackward) PetscFunctionReturn(0);
-  alloc    = fftwf_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, comm, &ln0, &l0s, &ln1, &l1s);
-  ok       = (PetscBool)(ln0 == t->local_n0 && l0s == t->local_0_start && ln1 == t->local_n1 && l1s == t->local_1_start);
-  t->fdata = ok ? (float *)fftwf_alloc_complex(PetscMax(alloc, 1)) : NULL;
-  ok       = (PetscBool)(ok && t->fdata);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_BOOL, MPI_LAND, comm)); /* every rank plans, or none */
-  if (ok) {
-    fftwf_set_timelimit(t->timelimit);
-    if (t->serial) {
-      t->fforward  = fftwf_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->fdata, (fftwf_complex *)t->fdata, t->flags);
-      t->fbackward = fftwf_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftwf_complex *)t->fdata, t->fdata, t->flags);
-    } else {
-      t->fforward  = fftwf_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->fdata, (fftwf_complex *)t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_OUT);
-      t->fbackward = fftwf_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftwf_complex *)t->fdata, t->fdata, comm, t->flags | FFTW_MPI_TRANSPOSED_IN);
-    }
-    ok = (PetscBool)(t->fforward && t->fbackward);
-  }
-  if (!ok) { /* nothing half-made stays behind */
-    if (t->fforward) fftwf_destroy_plan(t->fforward);
-    if (t->fbackward) fftwf_destroy_plan(t->fbackward);
-    fftwf_free(t->fdata);
-    t->fforward = t->fbackward = NULL;
-    t->fdata                   = NULL;
-  }
-  PetscCheck(ok, comm, PETSC_ERR_LIB, "FFTW could not allocate or plan a single-precision %td x %td transform in the double one's layout", t->n1, t->n0);
-  PetscFunctionReturn(0);
-}
-
 /*@
   MatAdhComplianceSetSinglePrecision - Sets whether `MatAdhComplianceMultOnSet()` applies an operator in single precision
 
@@ -323,7 +181,7 @@ PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
   PetscFunctionBegin;
   PetscCall(GetCompliance(K, "MatAdhComplianceSetSinglePrecision", &c, &mean));
   PetscCheck(!single || !c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceSetSinglePrecision: single precision is for MatAdhComplianceMultOnSet, which needs the grid's rows to be the transform's (a periodic grid)");
-  if (single) PetscCall(EnsureSingle(c->t, c->comm));
+  if (single) PetscCall(AdhTransformEnsureSingle_Private(c->t, c->comm));
   c->single = single;
   PetscFunctionReturn(0);
 }
@@ -437,266 +295,13 @@ static PetscErrorCode MatDestroy_Compliance(Mat K)
   PetscFunctionReturn(0);
 }
 
-/* Real kernel in the local FFTW slab: free = Love coefficients at wrapped offsets (even in both
-   directions, so its spectrum is real); transformed once to give the multiplier. */
-static PetscErrorCode ComputeFreeMultiplier(Compliance *c)
-{
-  fftw_complex *spec = (fftw_complex *)c->t->data;
-  ptrdiff_t     r, i, k, ncomplex = c->t->local_n1 * c->t->n0;
-  PetscReal     scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), lmin = PETSC_MAX_REAL;
-
-  PetscFunctionBegin;
-  PetscCall(PetscArrayzero(c->t->data, c->t->local_n0 * c->t->stride));
-  for (r = 0; r < c->t->local_n0; r++) {
-    ptrdiff_t row = c->t->local_0_start + r, dj = row <= c->Ny ? row : row - c->t->n0;
-    for (i = 0; i < c->t->n1; i++) {
-      ptrdiff_t di = i <= c->Nx ? i : i - c->t->n1;
-      c->t->data[r * c->t->stride + i] = AdhLoveCoefficient(di * c->hx, dj * c->hy, c->hx, c->hy, c->Estar);
-    }
-  }
-  fftw_execute(c->t->forward);
-  for (k = 0; k < ncomplex; k++) {
-    const ptrdiff_t k0 = c->t->serial ? k / c->t->local_n1 : k % c->t->n0, a = c->t->serial ? k % c->t->local_n1 : k / c->t->n0;
-    if (k0 <= c->t->n0 / 2) c->multiplier[MultIndex(c, a, k0)] = spec[k][0] * scale;
-    lmin = PetscMin(lmin, spec[k][0]);
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
-  /* K is a principal submatrix of this symmetric circulant, and so is every K_CC: by Cauchy
-     interlacing the smallest circulant eigenvalue bounds theirs from below. */
-  c->lambda_min      = PetscMax(lmin, 0.0);
-  c->lambda_meanfree = c->lambda_min;
-  PetscFunctionReturn(0);
-}
-
-/* periodic: u_q = 2/(E* |q|) p_q with q = 2 pi (kx/Lx, ky/Ly); the mean (q = 0) is left to d. */
-static PetscErrorCode ComputePeriodicMultiplier(Compliance *c)
-{
-  ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), lmin = PETSC_MAX_REAL;
-
-  PetscFunctionBegin;
-  for (a = 0; a < c->t->local_n1; a++) {
-    const ptrdiff_t kx = c->t->local_1_start + a; /* 0 .. n1/2: r2c keeps half the x modes */
-    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-      const ptrdiff_t ky = k0;
-      const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
-      const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[MultIndex(c, a, k0)] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
-      if (kx || ky) lmin = PetscMin(lmin, 2.0 / (c->Estar * q));
-    }
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
-  /* The constant vector is in K's null space, so no positive bound holds for K itself; on
-     mean-free vectors the smallest eigenvalue is the symbol at the largest wave number. */
-  c->lambda_min      = 0.0;
-  c->lambda_meanfree = lmin;
-  PetscFunctionReturn(0);
-}
-
-/* The diagonal and the 2-norm of one row of the circulant behind the multiplier (translation
-   invariance makes them one number each), from the half spectrum (modes kx and n1-kx, ky and
-   n0-ky share a value): the diagonal is the mean of the symbol, the row norm by Parseval. Every
-   row of K, and every part of one, is a part of such a row (free: the padded circulant holds
-   every offset of the grid). No grid vector, no multiply. */
-static PetscErrorCode ComputeRowStatistics(Compliance *c)
-{
-  ptrdiff_t a, k0;
-  PetscReal sum[2] = {0.0, 0.0};
-
-  PetscFunctionBegin;
-  for (a = 0; a < c->t->local_n1; a++) {
-    const ptrdiff_t kx = c->t->local_1_start + a;
-    const PetscReal wx = (kx == 0 || 2 * kx == c->t->n1) ? 1.0 : 2.0;
-    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-      const PetscReal wy = (k0 == 0 || 2 * k0 == c->t->n0) ? 1.0 : 2.0, m = c->multiplier[MultIndex(c, a, k0)];
-      sum[0] += wx * wy * m;
-      sum[1] += wx * wy * m * m;
-    }
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2, MPIU_REAL, MPIU_SUM, c->comm));
-  c->diagonal = sum[0];
-  c->rownorm  = PetscSqrtReal(sum[1] * (PetscReal)c->t->n0 * (PetscReal)c->t->n1);
-  PetscFunctionReturn(0);
-}
-
-/* Stiffness E*|q|/2, the inverse of the periodic compliance symbol; the mean mode gets the
-   value of the lowest nonzero wave number so the operator is positive definite. */
-static PetscErrorCode ComputeStiffnessMultiplier(Compliance *c)
-{
-  ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly);
-
-  PetscFunctionBegin;
-  for (a = 0; a < c->t->local_n1; a++) {
-    const ptrdiff_t kx = c->t->local_1_start + a;
-    for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-      const ptrdiff_t ky = k0;
-      const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
-      const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[MultIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
-    }
-  }
-  c->lambda_min = 0.5 * c->Estar * qmin;
-  PetscFunctionReturn(0);
-}
-
-/* Seconds of the faster of two forward-backward pairs of t's current plans (its array is zeroed:
-   the values do not change FFTW's speed). */
-static PetscErrorCode TimePair(AdhTransform t, PetscLogDouble *best)
-{
-  PetscLogDouble t0, t1;
-
-  PetscFunctionBegin;
-  PetscCall(PetscArrayzero(t->data, t->local_n0 * t->stride));
-  *best = PETSC_MAX_REAL;
-  for (int k = 0; k < 2; k++) {
-    PetscCall(PetscTime(&t0));
-    fftw_execute(t->forward);
-    fftw_execute(t->backward);
-    PetscCall(PetscTime(&t1));
-    *best = PetscMin(*best, t1 - t0);
-  }
-  PetscFunctionReturn(0);
-}
-
-static void DestroyPlans(AdhTransform t)
-{
-  if (t->forward) fftw_destroy_plan(t->forward);
-  if (t->backward) fftw_destroy_plan(t->backward);
-  t->forward = t->backward = NULL;
-}
-
-static void MakePlans(AdhTransform t, MPI_Comm comm, PetscBool serial, unsigned flags)
-{
-  t->serial = serial;
-  if (serial) {
-    t->forward  = fftw_plan_dft_r2c_2d((int)t->n0, (int)t->n1, t->data, (fftw_complex *)t->data, flags);
-    t->backward = fftw_plan_dft_c2r_2d((int)t->n0, (int)t->n1, (fftw_complex *)t->data, t->data, flags);
-  } else {
-    t->forward  = fftw_mpi_plan_dft_r2c_2d(t->n0, t->n1, t->data, (fftw_complex *)t->data, comm, flags | FFTW_MPI_TRANSPOSED_OUT);
-    t->backward = fftw_mpi_plan_dft_c2r_2d(t->n0, t->n1, (fftw_complex *)t->data, t->data, comm, flags | FFTW_MPI_TRANSPOSED_IN);
-  }
-}
-
-/* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
-   FFTW-MPI's transposed ones. */
-typedef enum { LAYOUT_AUTO, LAYOUT_SERIAL, LAYOUT_TRANSPOSED } Layout;
-static const char *const Layouts[] = {"auto", "serial", "transposed", "Layout", "LAYOUT_", NULL};
-
-/* The plans of t: FFTW-MPI's on several ranks. On one rank FFTW's serial plans skip FFTW-MPI's
-   transposes, which made a pair 10-30% faster from 256^2 to 3072^2 on the development machine
-   (32 MB of L3 cache); at 4096^2 the transposes, which keep the column transforms in cache, made
-   FFTW-MPI's 10% faster. So under auto a transform of up to 2^22 points (every bounding-box window
-   of a grid up to 1024^2) gets serial plans; a larger one gets both, timed, and keeps the faster
-   with a measuring planner, and FFTW-MPI's under estimate (nothing timed: reproducible). Should
-   one family fail to plan, the other is tried. Either way the result is the same transform; only
-   rounding differs. */
-static PetscErrorCode PlanTransform(AdhTransform t, MPI_Comm comm, PetscMPIInt size, unsigned flags, Layout layout)
-{
-  PetscBool serial;
-
-  PetscFunctionBegin;
-  if (size > 1) serial = PETSC_FALSE;
-  else if (layout != LAYOUT_AUTO) serial = (PetscBool)(layout == LAYOUT_SERIAL);
-  else if ((PetscLogDouble)t->n0 * (PetscLogDouble)t->n1 <= 4194304.0) serial = PETSC_TRUE;
-  else if (flags == FFTW_ESTIMATE) serial = PETSC_FALSE;
-  else {
-    PetscLogDouble tserial = PETSC_MAX_REAL, tmpi = PETSC_MAX_REAL;
-    MakePlans(t, comm, PETSC_TRUE, flags);
-    if (t->forward && t->backward) PetscCall(TimePair(t, &tserial));
-    DestroyPlans(t);
-    MakePlans(t, comm, PETSC_FALSE, flags);
-    if (t->forward && t->backward) PetscCall(TimePair(t, &tmpi));
-    serial = (PetscBool)(tserial < tmpi);
-    PetscCall(PetscInfo(NULL, "%td x %td transform on one rank: a pair takes %g s with serial plans, %g s with FFTW-MPI's; using %s\n", t->n1, t->n0, tserial, tmpi, serial ? "serial" : "FFTW-MPI's"));
-    if (!serial) PetscFunctionReturn(0); /* FFTW-MPI's plans, just made */
-    DestroyPlans(t);
-  }
-  MakePlans(t, comm, serial, flags); /* after timing, from FFTW's wisdom: no second measuring */
-  if ((!t->forward || !t->backward) && size == 1) {
-    DestroyPlans(t);
-    MakePlans(t, comm, (PetscBool)!serial, flags);
-  }
-  PetscFunctionReturn(0);
-}
-
-static unsigned PlannerFlag(PetscInt effort)
-{
-  const unsigned flags[] = {FFTW_ESTIMATE, FFTW_MEASURE, FFTW_PATIENT, FFTW_EXHAUSTIVE};
-  return flags[effort];
-}
-
-/* The grid's transform of the physical size (periodic) or the zero-padded one (free), created on
-   first use with the planner effort of the first operator that asks. */
-static PetscErrorCode GridGetTransform(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, Layout layout, AdhTransform *tout)
-{
-  AdhTransform t = grid->transforms[padded ? 1 : 0];
-  ptrdiff_t    alloc_local;
-  PetscInt     ys, ym, first_row, phys_start;
-  PetscMPIInt  size;
-  PetscBool    same;
-  Vec          x;
-  IS           is;
-
-  PetscFunctionBegin;
-  if (!t) {
-    PetscCall(PetscNew(&t));
-    t->refct    = 1; /* the grid's */
-    t->n0       = padded ? 2 * grid->Ny : grid->Ny;
-    t->n1       = padded ? 2 * grid->Nx : grid->Nx;
-    t->stride   = 2 * (t->n1 / 2 + 1);
-    PetscCallMPI(MPI_Comm_size(grid->comm, &size));
-    /* on one rank either layout fits: the whole transform, n0 x (n1/2 + 1) complex values */
-    alloc_local = fftw_mpi_local_size_2d_transposed(t->n0, t->n1 / 2 + 1, grid->comm, &t->local_n0, &t->local_0_start, &t->local_n1, &t->local_1_start);
-    t->data     = (double *)fftw_alloc_complex(PetscMax(alloc_local, 1));
-    if (!t->data) PetscCall(PetscFree(t));
-    PetscCheck(t, grid->comm, PETSC_ERR_MEM, "FFTW could not allocate %td complex values (out of memory?)", alloc_local);
-    /* By default plans have no limit (a limited plan multiplies 1.4x slower at 2048); the solver,
-       which plans many windows and uses the whole-grid operator rarely, asks for a short limit
-       through the grid (the solver and its bounding boxes). An explicit -adh_fftw_timelimit wins. Only on one rank:
-       each rank times its own trials, and a limit would let ranks take different planning paths
-       into different collectives (a deadlock). */
-    fftw_set_timelimit(size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT);
-    t->flags     = PlannerFlag(effort);
-    t->timelimit = size == 1 && timelimit >= 0 ? timelimit : FFTW_NO_TIMELIMIT;
-    PetscCall(PlanTransform(t, grid->comm, size, t->flags, layout));
-    if (!t->forward || !t->backward) { /* nothing half-made stays behind */
-      const ptrdiff_t n0 = t->n0, n1 = t->n1;
-      DestroyPlans(t);
-      fftw_free(t->data);
-      PetscCall(PetscFree(t));
-      SETERRQ(grid->comm, PETSC_ERR_LIB, "FFTW could not plan a %td x %td transform", n1, n0);
-    }
-
-    /* The scatter between the grid's rows and the physical rows of FFTW's slab, where they differ. */
-    first_row    = (PetscInt)t->local_0_start;
-    t->phys_rows = (PetscInt)PetscMax(0, PetscMin(t->local_0_start + t->local_n0, (ptrdiff_t)grid->Ny) - t->local_0_start);
-    phys_start   = PetscMin(first_row, grid->Ny) * grid->Nx;
-    PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
-    same = (PetscBool)(ys == first_row && ym == t->phys_rows);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, grid->comm));
-    if (!same) {
-      PetscCall(AdhGridCreateVector(grid, &x));
-      PetscCall(VecCreateMPI(grid->comm, t->phys_rows * grid->Nx, grid->Nx * grid->Ny, &t->xfft));
-      PetscCall(ISCreateStride(grid->comm, t->phys_rows * grid->Nx, phys_start, 1, &is));
-      PetscCall(VecScatterCreate(x, is, t->xfft, is, &t->toFFT));
-      PetscCall(ISDestroy(&is));
-      PetscCall(VecDestroy(&x));
-    }
-    grid->transforms[padded ? 1 : 0] = t;
-  }
-  t->refct++;
-  *tout = t;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, Mat *K)
 {
   const AdhBoundary boundary = kind == KIND_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   Compliance *c;
   PetscInt    ys, ym, effort = 1;
-  Layout      layout = LAYOUT_AUTO;
+  AdhFFTWLayout      layout = ADH_FFTW_LAYOUT_AUTO;
   PetscMPIInt size;
   PetscReal   timelimit = -1.0;
   PetscBool   tlset;
@@ -709,10 +314,10 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
   PetscCall(PetscOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
-  PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "MatCreateAdhCompliance", Layouts, (PetscEnum)layout, (PetscEnum *)&layout, NULL));
+  PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "MatCreateAdhCompliance", AdhFFTWLayouts, (PetscEnum)layout, (PetscEnum *)&layout, NULL));
   PetscOptionsEnd();
   PetscCallMPI(MPI_Comm_size(grid->comm, &size));
-  PetscCheck(layout != LAYOUT_SERIAL || size == 1, grid->comm, PETSC_ERR_ARG_INCOMP, "-adh_fftw_layout serial needs one rank; on %d ranks the transforms are FFTW-MPI's (transposed)", (int)size);
+  PetscCheck(layout != ADH_FFTW_LAYOUT_SERIAL || size == 1, grid->comm, PETSC_ERR_ARG_INCOMP, "-adh_fftw_layout serial needs one rank; on %d ranks the transforms are FFTW-MPI's (transposed)", (int)size);
   if (grid->fftw_effort >= 0) effort = grid->fftw_effort;
   if (!tlset && grid->fftw_timelimit >= -1.0) timelimit = grid->fftw_timelimit;
 
@@ -722,14 +327,14 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->boundary = boundary;
   c->Estar    = Estar;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
-  PetscCall(GridGetTransform(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, layout, &c->t));
+  PetscCall(AdhGridGetTransform_Private(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, layout, &c->t));
   c->nhalf = c->t->n0 / 2 + 1;
   nspec    = c->t->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
-  if (kind == KIND_FREE) PetscCall(ComputeFreeMultiplier(c));
-  else if (kind == KIND_PERIODIC) PetscCall(ComputePeriodicMultiplier(c));
-  else PetscCall(ComputeStiffnessMultiplier(c));
-  PetscCall(ComputeRowStatistics(c));
+  if (kind == KIND_FREE) PetscCall(AdhComplianceFreeMultiplier_Private(c));
+  else if (kind == KIND_PERIODIC) PetscCall(AdhCompliancePeriodicMultiplier_Private(c));
+  else PetscCall(AdhComplianceStiffnessMultiplier_Private(c));
+  PetscCall(AdhComplianceRowStatistics_Private(c));
 
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
@@ -972,67 +577,6 @@ PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   *rho = c->rownorm;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
-{
-  MeanCompliance *m;
-
-  PetscFunctionBegin;
-  PetscCall(MatShellGetContext(A, &m));
-  PetscCall(MatDestroy(&m->K));
-  PetscCall(PetscFree(m));
-  PetscFunctionReturn(0);
-}
-
-/*@
-  MatCreateAdhMeanCompliance - Creates K + c0 (1 1^T)/N, a periodic compliance whose mean mode has the compliance c0
-
-  Collective
-
-  Input Parameters:
-+ K  - a periodic compliance from `MatCreateAdhCompliance()`
-- c0 - the compliance of the mean mode, > 0
-
-  Output Parameter:
-. A - the operator, a `MATSHELL`
-
-  Notes:
-  With c0 > 0 every K_CC is positive definite, the whole cell included; the eigenvalues of A are K's on mean-free vectors and
-  c0. Under force control the mean pressure is given, so the mean displacement can be carried by any c0 and subtracted
-  afterwards.
-
-  A keeps a reference to K, released when A is destroyed, has K's layout, provides `MatMult()` only, and is marked SPD.
-  `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceSetSinglePrecision()` and `MatAdhComplianceMultOnSet()` accept it (they
-  act on K, the last adding the mean term); the other MatAdhComplianceGet functions need K itself. Neither the kind of K
-  nor c0 > 0 is checked.
-
-  Level: advanced
-
-.seealso: `MatCreateAdhCompliance()`, `MatAdhComplianceMultOnSet()`, `MatAdhComplianceGetSetLambdaMin()`
-@*/
-PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
-{
-  MeanCompliance *m;
-  PetscInt        nloc, N;
-  DM              dm;
-
-  PetscFunctionBegin;
-  PetscCall(PetscNew(&m));
-  PetscCall(PetscObjectReference((PetscObject)K));
-  m->K  = K;
-  m->c0 = c0;
-  PetscCall(MatGetLocalSize(K, &nloc, NULL));
-  PetscCall(MatGetSize(K, &N, NULL));
-  m->N = (PetscReal)N;
-  PetscCall(MatCreateShell(PetscObjectComm((PetscObject)K), nloc, nloc, N, N, m, A));
-  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_MeanCompliance));
-  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_MeanCompliance));
-  PetscCall(MatGetDM(K, &dm));
-  PetscCall(MatSetDM(*A, dm));
-  PetscCall(MatSetOption(*A, MAT_SPD, PETSC_TRUE));
-  PetscCall(MatSetUp(*A));
   PetscFunctionReturn(0);
 }
 

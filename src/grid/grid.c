@@ -1,6 +1,5 @@
 /* The element grid: Nx x Ny rectangles of hx x hy, distributed by whole rows over the ranks. */
-#include <fftw3-mpi.h>
-#include "adhbem.h"
+#include "grid/gridimpl.h"
 
 /*@
   AdhGridCreate - Creates a grid of Nx x Ny rectangular elements, to be distributed by whole rows over the ranks of a communicator

@@ -1,0 +1,76 @@
+/* The grid layer's private parts: the distributed transform and the operators' data, shared by
+   transform.c, multiplier.c, compliance.c and meancompliance.c. */
+#ifndef ADHBEM_GRIDIMPL_H
+#define ADHBEM_GRIDIMPL_H
+#include <fftw3-mpi.h>
+#include "adhbem.h"
+
+/* A distributed in-place r2c transform of one size with its array, plans and (where the grid's
+   rows are not FFTW's) the redistribution. The operators of one grid share it (the compliance and
+   the stiffness of a periodic cell: one array, one pair of plans, and their single-precision twins
+   once asked for); only one multiply runs at a time. The grid holds a reference and each operator
+   one. */
+struct _n_AdhTransform {
+  PetscInt   refct;
+  ptrdiff_t  n0, n1;                                  /* transform size: rows (y), columns (x) */
+  ptrdiff_t  stride;                                  /* doubles per row of the in-place real array */
+  ptrdiff_t  local_n0, local_0_start, local_n1, local_1_start;
+  PetscBool  serial;                                  /* serial plans (one rank): spectrum [ky][kx] instead of FFTW-MPI's transposed [kx][ky] */
+  PetscInt   phys_rows;                               /* physical rows inside this rank's FFTW slab */
+  double    *data;                                    /* in-place transform array */
+  fftw_plan  forward, backward;
+  unsigned   flags;                                   /* the planner's effort the plans were made with, */
+  double     timelimit;                               /* and FFTW's time limit for planning */
+  float     *fdata;                                   /* the same transform in single precision (MatAdhComplianceSetSinglePrecision): */
+  fftwf_plan fforward, fbackward;                     /* made on first use, NULL before */
+  Vec        xfft;                                    /* physical values in FFTW's row distribution */
+  VecScatter toFFT;                                   /* grid rows -> FFTW's (NULL: they are the same) */
+};
+
+/* What the multiplier is: the compliance (free or periodic) or the periodic stiffness. */
+typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
+
+typedef struct {
+  MPI_Comm     comm;
+  Kind         kind;
+  AdhBoundary  boundary;
+  PetscReal    Estar, hx, hy, Lx, Ly;
+  PetscInt     Nx, Ny;
+  AdhTransform t;                                     /* the grid's transform of this size (shared) */
+  double      *multiplier;                            /* real kernel spectrum / (n0 n1), in the spectrum's layout (MultIndex); even in ky, so only ky = 0 .. n0/2 are kept */
+  ptrdiff_t    nhalf;                                 /* n0/2 + 1 */
+  PetscReal    lambda_min, diagonal;
+  PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
+  PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
+  PetscInt     nmult, nmult_single;                   /* multiplies so far, and of them in single precision */
+  PetscBool    single;                                /* MatAdhComplianceMultOnSet in single precision */
+} Compliance;
+
+/* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
+   force control the mean pressure is given, so the mean displacement can be carried by any c0 and
+   subtracted afterwards; with it every K_CC, the whole cell included, is positive definite. */
+typedef struct {
+  Mat       K;
+  PetscReal c0, N;
+} MeanCompliance;
+
+/* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
+   FFTW-MPI's transposed ones. */
+typedef enum { ADH_FFTW_LAYOUT_AUTO, ADH_FFTW_LAYOUT_SERIAL, ADH_FFTW_LAYOUT_TRANSPOSED } AdhFFTWLayout;
+
+/* Where the multiplier of local kx column a and row ky = k0 <= n0/2 is kept. */
+static inline ptrdiff_t MultIndex(const Compliance *c, ptrdiff_t a, ptrdiff_t k0)
+{
+  return c->t->serial ? k0 * c->t->local_n1 + a : a * c->nhalf + k0;
+}
+
+PETSC_INTERN const char *const AdhFFTWLayouts[];
+PETSC_INTERN PetscErrorCode AdhTransformRelease_Private(AdhTransform *);
+PETSC_INTERN PetscErrorCode AdhTransformEnsureSingle_Private(AdhTransform t, MPI_Comm comm);
+PETSC_INTERN PetscErrorCode AdhGridGetTransform_Private(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, AdhFFTWLayout layout, AdhTransform *tout);
+PETSC_INTERN PetscErrorCode MatMult_AdhMeanCompliance_Private(Mat A, Vec x, Vec y);
+PETSC_INTERN PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c);
+PETSC_INTERN PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c);
+PETSC_INTERN PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c);
+PETSC_INTERN PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c);
+#endif

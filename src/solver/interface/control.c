@@ -9,6 +9,30 @@
 
 static PetscFunctionList AdhControlList = NULL;
 
+/*@
+  AdhControlRegister - Adds a load control type
+
+  Not Collective
+
+  Input Parameters:
++ name   - the type's name, as given to `AdhSolverSetControlType()` and -adh_control
+- create - the function that gives a solver this control: it fills in the solver's `AdhControlOps` (setup, step,
+           destroy; declared in the private header src/solver/solverimpl.h)
+
+  Calling sequence of `create`:
+. s - the solver, whose previous control has been destroyed
+
+  Level: advanced
+
+  Notes:
+  The built-in types, `ADHCONTROLDISPLACEMENT` and `ADHCONTROLFORCE`, are registered when the package is initialized,
+  which this function does first. Registering a name again replaces its function.
+
+  A new type is one file in src/solver/impls/control/ and its registration in src/solver/interface/solverregis.c
+  (docs/code-map.md).
+
+.seealso: `AdhSolverSetControlType()`, `AdhSolverGetControlType()`, `AdhCriterionRegister()`, `AdhPredictorRegister()`
+@*/
 PetscErrorCode AdhControlRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
@@ -32,6 +56,32 @@ PetscErrorCode AdhControlGetList_Private(PetscFunctionList *list)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetControlType - Sets the load control: what the path's values are and how a step reaches one
+
+  Logically Collective
+
+  Input Parameters:
++ s    - the solver
+- type - the control's name: `ADHCONTROLDISPLACEMENT` (the default: the path holds indentations d),
+         `ADHCONTROLFORCE` (the path holds forces F; each step finds the d at which the equilibrium set carries F),
+         or one registered with `AdhControlRegister()`
+
+  Options Database Key:
+. -adh_control <displacement,force> - the load control
+
+  Level: intermediate
+
+  Notes:
+  The control cannot change after `AdhSolverSetUp()`; setting the type the solver already has does nothing. An
+  unknown name is an error that lists the registered ones.
+
+  -adh_cascade_apart and -adh_cascade_local are for displacement control only, and the default of -adh_cascade_local
+  follows the control and the criterion.
+
+.seealso: `AdhSolverGetControlType()`, `AdhControlRegister()`, `ADHCONTROLDISPLACEMENT`, `ADHCONTROLFORCE`,
+          `AdhSolverStep()`
+@*/
 PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
 {
   PetscErrorCode (*create)(AdhSolver);
@@ -55,6 +105,24 @@ PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetControlType - Gets the name of the load control
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. type - the control's name, for example `ADHCONTROLDISPLACEMENT`
+
+  Level: intermediate
+
+  Note:
+  The string is the solver's: do not free it; it holds the name until the control changes.
+
+.seealso: `AdhSolverSetControlType()`, `AdhControlRegister()`
+@*/
 PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
 {
   PetscFunctionBegin;
@@ -62,7 +130,35 @@ PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
   PetscFunctionReturn(0);
 }
 
-/* One step to the target (d, or F under force control), with its counts. */
+/*@
+  AdhSolverStep - Takes one step: the equilibrium contact set at an indentation d, or carrying a force F under force control
+
+  Collective
+
+  Input Parameters:
++ s      - the solver
+- target - the indentation d, or the force F under `ADHCONTROLFORCE`; it must be finite
+
+  Level: intermediate
+
+  Notes:
+  The step starts from the current set. It sets the solver up if needed (`AdhSolverSetUp()`); after a step that ended
+  in pull-off (`AdhSolverIsPulledOff()`) it starts with the bodies apart, nothing in contact. The step's counts (set
+  updates, KSP iterations, compliance applications, FFT pairs) are kept for `AdhSolverGetState()` and
+  `AdhSolverComputeState()`, and a displacement handed out by `AdhSolverGetFields()` is brought up to date.
+
+  Under displacement control a step that empties a set that had contact ends in pull-off. Under force control a set
+  that empties means no equilibrium carries F: the contact has come off. The step then bisects between the previous
+  state's force and F, from the previous state, and ends on the state carrying the largest tension (within
+  -adh_pulloff_rtol), marked pulled off; the next step starts with nothing in contact. Without contact a force F <= 0
+  leaves the bodies apart.
+
+  The state is not recorded: `AdhSolverRecordState()` records it, as `AdhSolverSolvePath()` does after each step. A
+  signal that stops a running `AdhSolverSolvePath()` abandons the step, which returns `PETSC_ERR_SIG`.
+
+.seealso: `AdhSolverStart()`, `AdhSolverSolvePath()`, `AdhSolverRecordState()`, `AdhSolverGetState()`,
+          `AdhSolverIsPulledOff()`, `AdhSolverSetControlType()`
+@*/
 PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
 {
   PetscInt       mults0, mults1, ffts0, ffts1;
@@ -98,6 +194,24 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverIsPulledOff - Tells whether the last step ended in pull-off
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. pulled_off - `PETSC_TRUE` if the last step ended in pull-off: the next step starts with the bodies apart
+
+  Level: intermediate
+
+  Note:
+  `AdhSolverSolvePath()` ends a leg at pull-off; the state it records there has pulled_off = 1.
+
+.seealso: `AdhSolverStep()`, `AdhSolverComputeState()`, `AdhCurveGetPullOffState()`
+@*/
 PetscErrorCode AdhSolverIsPulledOff(AdhSolver s, PetscBool *pulled_off)
 {
   PetscFunctionBegin;

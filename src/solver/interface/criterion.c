@@ -10,6 +10,30 @@
 
 static PetscFunctionList AdhCriterionList = NULL;
 
+/*@
+  AdhCriterionRegister - Adds a detachment criterion type
+
+  Not Collective
+
+  Input Parameters:
++ name   - the type's name, as given to `AdhSolverSetCriterionType()` and -adh_criterion
+- create - the function that gives a solver this criterion: it fills in the solver's `AdhCriterionOps` (evaluate, and
+           optionally setup, destroy and decide; declared in the private header src/solver/solverimpl.h)
+
+  Calling sequence of `create`:
+. s - the solver, whose previous criterion has been destroyed
+
+  Level: advanced
+
+  Notes:
+  The built-in types, `ADHCRITERIONCRACKCLOSURE` and `ADHCRITERIONPOHRTPOPOV`, are registered when the package is
+  initialized, which this function does first. Registering a name again replaces its function.
+
+  A new type is one file in src/solver/impls/criterion/ and its registration in src/solver/interface/solverregis.c;
+  docs/code-map.md says what its evaluate does.
+
+.seealso: `AdhSolverSetCriterionType()`, `AdhSolverGetCriterionType()`, `AdhControlRegister()`, `AdhPredictorRegister()`
+@*/
 PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
@@ -33,6 +57,32 @@ PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *list)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetCriterionType - Sets the detachment criterion: when a point of the contact set lets go
+
+  Logically Collective
+
+  Input Parameters:
++ s    - the solver
+- type - the criterion's name: `ADHCRITERIONCRACKCLOSURE` (the default: the contact edge's energy release rate by
+         virtual crack closure, G > dgamma, which does not depend on the edge's direction on the grid),
+         `ADHCRITERIONPOHRTPOPOV` (the paper's p < -Sigma), or one registered with `AdhCriterionRegister()`
+
+  Options Database Key:
+. -adh_criterion <crack-closure,pohrt-popov> - the criterion
+
+  Level: intermediate
+
+  Notes:
+  The criterion cannot change after `AdhSolverSetUp()`; setting the type the solver already has does nothing. An
+  unknown name is an error that lists the registered ones.
+
+  The criterion chooses defaults at set-up: the attach rule griffith (crack-closure's mirror) with crack-closure and
+  reach otherwise (griffith is refused with any other criterion), and -adh_cascade_local inf (the whole grid) with
+  crack-closure under displacement control, 0 otherwise.
+
+.seealso: `AdhSolverGetCriterionType()`, `AdhCriterionRegister()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
+@*/
 PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
 {
   PetscErrorCode (*create)(AdhSolver);
@@ -56,6 +106,24 @@ PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetCriterionType - Gets the name of the detachment criterion
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. type - the criterion's name, for example `ADHCRITERIONCRACKCLOSURE`
+
+  Level: intermediate
+
+  Note:
+  The string is the solver's: do not free it; it holds the name until the criterion changes.
+
+.seealso: `AdhSolverSetCriterionType()`, `AdhCriterionRegister()`
+@*/
 PetscErrorCode AdhSolverGetCriterionType(AdhSolver s, AdhCriterionType *type)
 {
   PetscFunctionBegin;

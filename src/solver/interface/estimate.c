@@ -46,7 +46,35 @@ static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *p
   *per_rank += 4.0 * PetscMin(PetscMax(s->cascade_apart, s->local_whole ? 0 : s->local_W), s->grid->Ny) * s->grid->Nx;
 }
 
-/* The estimate for the whole run (all ranks) and for the ranks on this node. */
+/*@
+  AdhSolverEstimateMemory - Estimates the memory the run needs, from the grid, the boundary, the criterion and the options
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameters:
++ total - bytes for the whole run, all ranks together (or `NULL`)
+- node  - bytes for the ranks of the solver's communicator on this node (or `NULL`)
+
+  Level: intermediate
+
+  Notes:
+  The model is per grid point, measured with -memory_view and -malloc_view (the comment at the top of estimate.c
+  accounts for it): about 130 bytes a point on a periodic cell and 210 on a free boundary (its zero-padded transform
+  and bounding-box windows), plus what crack-closure (more on a punch), -adh_criterion_certify, -adh_cascade_apart,
+  -adh_cascade_local with a finite F and -adh_cascade_single add; and per rank about 50 MB of MPI, PETSc and FFTW,
+  crack-closure's rows of other ranks (one more buffer with -adh_attach griffith) and the band of -adh_cascade_apart
+  or -adh_cascade_local (the latter's width is known after set-up). The node's share assumes the points spread evenly
+  over the ranks.
+
+  It can be called before `AdhSolverSetUp()`, once the options are set. Set-up refuses a grid whose estimate for this
+  node exceeds the node's physical memory, before it allocates anything (-adh_memory_check 0 skips this);
+  `AdhSolverView()` prints the estimate.
+
+.seealso: `AdhSolverView()`, `AdhSolverSetUp()`, `AdhSolverSetFromOptions()`
+@*/
 PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, PetscLogDouble *node)
 {
   const PetscLogDouble points = (PetscLogDouble)s->grid->Nx * (PetscLogDouble)s->grid->Ny;

@@ -27,6 +27,23 @@ const AdhCurveColumn AdhCurveColumns[] = {
 };
 const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
 
+/*@
+  AdhStateValue - Gives one column of a recorded state as a real number
+
+  Not Collective
+
+  Input Parameters:
++ st     - the state
+- column - the column's index in `AdhCurveColumns`, from 0 to `AdhCurveNumColumns` - 1
+
+  Level: intermediate
+
+  Notes:
+  Returns the value; a count (an integer column) is converted to `PetscReal`. `AdhCurveColumns` gives each column's
+  name, its place in `AdhState` and whether it is a count, in the order of the CSV file. The index is not checked.
+
+.seealso: `AdhSolverGetCurve()`, `AdhSolverRecordState()`, `AdhSolverComputeState()`
+@*/
 PetscReal AdhStateValue(const AdhState *st, PetscInt column)
 {
   const char *field = (const char *)st + AdhCurveColumns[column].offset;
@@ -88,6 +105,34 @@ static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverStart - Computes the starting state at the path's first value, and begins a new curve
+
+  Collective
+
+  Input Parameters:
++ s      - the solver
+- target - the first value of the path: an indentation d, or a force F under `ADHCONTROLFORCE`
+
+  Options Database Key:
+. -adh_start <hertz,adhesive> - the starting state, read by `AdhSolverSetFromOptions()`
+
+  Level: intermediate
+
+  Notes:
+  hertz (the default): the adhesion-free state at the target, from the geometric overlap (the points with h < d), or
+  under force control from the first touch; its step is made without adhesion, which applies from the next step on.
+  Under force control a target below 0 is refused: the adhesion-free start carries no tension.
+
+  adhesive: loading with adhesion from first touch (d = min h, where the apex points carry no load) to the target in
+  -adh_steps steps, which end early at pull-off; under force control from F = 0. Under displacement control a target
+  at or before first touch (d <= min h) is one step.
+
+  Sets the solver up if needed. The counts of `AdhSolverGetState()` are the start's, over all its steps. The state
+  is not recorded: `AdhSolverRecordState()` records it, and `AdhSolverSolvePath()` calls both.
+
+.seealso: `AdhSolverStep()`, `AdhSolverSolvePath()`, `AdhSolverRecordState()`, `AdhSolverGetCurve()`
+@*/
 PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 {
   PetscInt  outer = 0, ksp = 0, mults = 0, ffts = 0;
@@ -124,6 +169,33 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetState - Gets the current state: indentation, force, area, points in contact, and the last step's counts
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameters:
++ d      - the indentation (or `NULL`)
+. F      - the force, the sum of the pressures times the element area hx hy (or `NULL`)
+. A      - the contact area, the points in contact times hx hy (or `NULL`)
+. points - the number of grid points in contact (or `NULL`)
+. outer  - the set updates of the last step (or `NULL`)
+. ksp    - the KSP iterations of the last step (or `NULL`)
+- mults  - the compliance applications of the last step (or `NULL`)
+
+  Level: intermediate
+
+  Notes:
+  The last step is the last `AdhSolverStep()`, or all the steps of `AdhSolverStart()`. On a periodic cell F is the
+  mean pressure times the cell's area.
+
+  Collective whatever is asked for: it sums the pressure over the ranks.
+
+.seealso: `AdhSolverComputeState()`, `AdhSolverGetFields()`, `AdhSolverGetContactSet()`, `AdhSolverStep()`
+@*/
 PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscReal *A, PetscInt *points, PetscInt *outer, PetscInt *ksp, PetscInt *mults)
 {
   PetscScalar sum;
@@ -140,6 +212,28 @@ PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscR
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverComputeState - Computes the current state with its statistics, as a path records it
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. st - the state: that of `AdhSolverGetState()`, with the statistics (contact patches, mean gap, tension, areas in
+       tension and in compression, the criterion's detach ratio, small patches), the step's FFT pairs, and whether
+       the step ended in pull-off
+
+  Level: intermediate
+
+  Notes:
+  The statistics' own compliance applications (crack-closure's detach ratio needs one) are counted in the state's
+  compliance_applications and fft_pairs. The seconds are left 0: `AdhSolverRecordState()` sets them. Nothing is
+  added to the curve.
+
+.seealso: `AdhSolverGetState()`, `AdhSolverRecordState()`, `AdhSolverGetCurve()`, `AdhStateValue()`
+@*/
 PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
 {
   PetscInt mults0, ffts0, mults1, ffts1;
@@ -157,6 +251,38 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverMonitorSet - Adds a function to be called after every recorded state of a path
+
+  Logically Collective
+
+  Input Parameters:
++ s       - the solver
+. monitor - the monitor
+. ctx     - [optional] a context for it (may be `NULL`)
+- destroy - [optional] a function that destroys the context (may be `NULL`)
+
+  Calling sequence of `monitor`:
++ s    - the solver
+. step - the state's row in the curve (0: the starting state)
+. st   - the state just recorded
+- ctx  - the context given here
+
+  Calling sequence of `destroy`:
+. ctx - the address of the context
+
+  Options Database Key:
+. -adh_monitor - sets `AdhSolverMonitorDefault()`, one line per state
+
+  Level: intermediate
+
+  Notes:
+  The monitors are called on every rank, in the order they were set, by `AdhSolverMonitor()`: after each state
+  `AdhSolverSolvePath()` records, once the state is in the curve and in the results file. One that fails on any rank
+  fails on every rank. At most 8 monitors can be set.
+
+.seealso: `AdhSolverMonitorDefault()`, `AdhSolverMonitorCancel()`, `AdhSolverMonitor()`, `AdhSolverSolvePath()`
+@*/
 PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSolver, PetscInt, const AdhState *, void *), void *ctx, PetscErrorCode (*destroy)(void **))
 {
   PetscFunctionBegin;
@@ -168,6 +294,23 @@ PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSol
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverMonitorCancel - Removes every monitor, destroying their contexts
+
+  Logically Collective
+
+  Input Parameter:
+. s - the solver
+
+  Level: intermediate
+
+  Note:
+  Each context is destroyed with the destroy function given to `AdhSolverMonitorSet()`. The -adh_monitor setting
+  stays on: a later `AdhSolverSetFromOptions()` does not set `AdhSolverMonitorDefault()` again, the progress lines
+  inside long steps go on, and the path's progress lines (`AdhSolverSetProgress()`) stay off.
+
+.seealso: `AdhSolverMonitorSet()`, `AdhSolverDestroy()`
+@*/
 PetscErrorCode AdhSolverMonitorCancel(AdhSolver s)
 {
   PetscFunctionBegin;
@@ -177,7 +320,6 @@ PetscErrorCode AdhSolverMonitorCancel(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* One line per state (the header before the first), and a line at pull-off. */
 /* Seconds left on the path after the state just recorded, from the mean time of this run's
    states (an upper bound where a leg ends early by pull-off); -1 outside a path or before a state. */
 static PetscReal SecondsLeft(AdhSolver s, PetscLogDouble now)
@@ -187,6 +329,34 @@ static PetscReal SecondsLeft(AdhSolver s, PetscLogDouble now)
   return (PetscReal)((now - s->path_start) / done * (PetscReal)PetscMax(0, s->path_states - s->curve.n));
 }
 
+/*@
+  AdhSolverMonitorDefault - The default monitor: one line per recorded state, with a header before the first
+
+  Collective
+
+  Input Parameters:
++ s    - the solver
+. step - the state's row in the curve
+. st   - the state
+- ctx  - unused
+
+  Options Database Key:
+. -adh_monitor - sets this monitor, read by `AdhSolverSetFromOptions()`
+
+  Level: intermediate
+
+  Notes:
+  The line gives the state's row, d, the force, the area, the points in contact, the patches, the set updates, the
+  KSP iterations, the compliance applications, the seconds, and the seconds left on the path: estimated from the mean
+  time of this run's states, an upper bound where a leg ends early by pull-off, "-" outside a path. A header of two
+  lines, the columns' names and units, comes before state 0 and before the first state of a path or of a restart; a
+  state that ends a leg by pull-off adds the line "contact lost at d = ...: the leg ends". It prints with
+  `PetscPrintf()` on the solver's communicator.
+
+  Give it to `AdhSolverMonitorSet()` with a `NULL` context.
+
+.seealso: `AdhSolverMonitorSet()`, `AdhSolverSetProgress()`, `AdhSolverMonitor()`
+@*/
 PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhState *st, void *ctx)
 {
   PetscLogDouble now;
@@ -226,6 +396,27 @@ static PetscErrorCode Progress(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverMonitor - Calls the monitors with a recorded state
+
+  Collective
+
+  Input Parameters:
++ s    - the solver
+. step - the state's row in the curve
+- st   - the state
+
+  Level: advanced
+
+  Notes:
+  `AdhSolverSolvePath()` calls it after each state it records. Call it after `AdhSolverRecordState()` to monitor the
+  states of your own `AdhSolverStart()` and `AdhSolverStep()` calls.
+
+  A monitor that fails on any rank fails on every rank: after each monitor its error code is reduced over the
+  communicator, and a failure is the error `PETSC_ERR_USER`, naming the monitor and the state.
+
+.seealso: `AdhSolverMonitorSet()`, `AdhSolverRecordState()`, `AdhSolverMonitorDefault()`
+@*/
 PetscErrorCode AdhSolverMonitor(AdhSolver s, PetscInt step, const AdhState *st)
 {
   PetscFunctionBegin;
@@ -238,6 +429,27 @@ PetscErrorCode AdhSolverMonitor(AdhSolver s, PetscInt step, const AdhState *st)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverRecordState - Records the state the last `AdhSolverStart()` or `AdhSolverStep()` reached, as a path does
+
+  Collective
+
+  Input Parameters:
++ s  - the solver
+- t0 - when the step began, a `PetscTime()`: the state's seconds count from it
+
+  Output Parameter:
+. st - the state, as recorded
+
+  Level: advanced
+
+  Notes:
+  The state is computed (`AdhSolverComputeState()`), its seconds set, and appended to the curve
+  (`AdhSolverGetCurve()`). Nothing is written to a results file and the monitors are not called: `AdhSolverMonitor()`
+  calls them.
+
+.seealso: `AdhSolverComputeState()`, `AdhSolverMonitor()`, `AdhSolverGetCurve()`, `AdhSolverStep()`
+@*/
 PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st)
 {
   PetscLogDouble t1;
@@ -250,6 +462,30 @@ PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetPath - Gets the path: its breakpoints, and the steps of each leg between them
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameters:
++ npath - the number of breakpoints (or `NULL`)
+. path  - the breakpoints: indentations, or forces under `ADHCONTROLFORCE` (or `NULL`)
+- steps - the steps of each leg (or `NULL`)
+
+  Options Database Keys:
++ -adh_path <v0,v1,...> - the breakpoints (default 0.01,0), read by `AdhSolverSetFromOptions()`
+- -adh_steps <10>       - the steps per leg
+
+  Level: intermediate
+
+  Note:
+  The array is borrowed: do not free it. It is replaced when -adh_path is read again.
+
+.seealso: `AdhSolverSolvePath()`, `AdhSolverSetFromOptions()`
+@*/
 PetscErrorCode AdhSolverGetPath(AdhSolver s, PetscInt *npath, const PetscReal *path[], PetscInt *steps)
 {
   PetscFunctionBegin;
@@ -413,6 +649,38 @@ static PetscErrorCode SolvePathOpen(AdhSolver s, PetscViewer *viewer, PetscInt l
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSolvePath - Follows the whole path (-adh_path), recording every state in the curve
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Level: beginner
+
+  Notes:
+  Sets the solver up if needed and checks the path before any work and before a results file is opened: under force
+  control a first force below 0 is refused, and on a periodic cell under displacement control every breakpoint must
+  lie below full contact, d < mean(h). It begins a new curve, records the starting state at the first breakpoint
+  (`AdhSolverStart()`, -adh_start), and follows each leg in -adh_steps steps (`AdhSolverStep()`), recording each state
+  and calling the monitors after it. A leg that ends in pull-off ends there: the rest of it has nothing in contact. A
+  path that never touches the surface ends with a warning.
+
+  With -adh_output the results file is written as the path goes: every recorded state, and with -adh_fields the
+  fields of every -adh_fields_stride-th state. What was computed before an error or a stop is still written, with the
+  file's attribute complete = 0. With -adh_checkpoint the state is saved after every -adh_checkpoint_every-th state;
+  with -adh_restart the path goes on after the checkpoint's state, in the results file of the run that wrote it (a
+  leg that ended in pull-off is over).
+
+  SIGTERM and SIGINT stop the path: every rank reads the flag together in each iteration of the solves, in each set
+  update and after each recorded state, and the step in progress is abandoned. The results are closed, and the error
+  `PETSC_ERR_SIG` says after which state the results end, how long the stop took, and how to go on. The signal
+  handlers are installed for the path and the previous ones restored after it.
+
+.seealso: `AdhSolverStart()`, `AdhSolverStep()`, `AdhSolverGetCurve()`, `AdhSolverGetPath()`, `AdhSolverMonitorSet()`,
+          `AdhSolverSetProgress()`, `AdhSolverSetFromOptions()`
+@*/
 PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 {
   PetscViewer    viewer = NULL;

@@ -12,6 +12,28 @@
 
 static PetscFunctionList AdhPredictorList = NULL;
 
+/*@
+  AdhPredictorRegister - Adds a contact-set predictor type
+
+  Not Collective
+
+  Input Parameters:
++ name   - the type's name, as given to `AdhSolverSetPredictorType()` and -adh_predictor
+- create - the function that gives a solver this predictor: it sets the solver's predict function (`NULL`: none;
+           see the private header src/solver/solverimpl.h)
+
+  Calling sequence of `create`:
+. s - the solver
+
+  Level: advanced
+
+  Notes:
+  The built-in types, `ADHPREDICTORPOLONSKYKEER` and `ADHPREDICTORNONE`, are registered when the package is
+  initialized, which this function does first. Registering a name again replaces its function. A predictor keeps no
+  data of its own: the previous one is not destroyed.
+
+.seealso: `AdhSolverSetPredictorType()`, `AdhSolverGetPredictorType()`, `AdhControlRegister()`, `AdhCriterionRegister()`
+@*/
 PetscErrorCode AdhPredictorRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
@@ -35,6 +57,35 @@ PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *list)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetPredictorType - Sets the contact-set predictor: a fast first guess of a step's contact set without adhesion
+
+  Logically Collective
+
+  Input Parameters:
++ s    - the solver
+- type - the predictor's name: `ADHPREDICTORPOLONSKYKEER` (Polonsky & Keer's constrained conjugate gradient),
+         `ADHPREDICTORNONE`, or one registered with `AdhPredictorRegister()`
+
+  Options Database Key:
+. -adh_predictor <polonsky-keer,none> - the predictor
+
+  Level: intermediate
+
+  Notes:
+  The guess (a contact set and pressure) is handed to the set-update loop, which then certifies it as it certifies
+  any set: the predictor changes the cost, not the answer. Without adhesion the contact problem at d or carrying F
+  has one solution, and the loop started from a good guess only has fewer sets to go through. It is used under either
+  control, only for steps without adhesion (no dgamma nor -adh_critical_stress, or the step of a Hertz start), and
+  under force control only for F > 0.
+
+  The default is polonsky-keer on a periodic cell and none on a free boundary, where the loop's bounding-box windows
+  cost less than the predictor's transforms of the whole grid: `AdhSolverSetUp()` chooses none there unless a type
+  was set, by this function or -adh_predictor. Unlike the control and the criterion, the predictor may change after
+  set-up. An unknown name is an error that lists the registered ones.
+
+.seealso: `AdhSolverGetPredictorType()`, `AdhPredictorRegister()`, `ADHPREDICTORPOLONSKYKEER`, `ADHPREDICTORNONE`
+@*/
 PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
 {
   PetscErrorCode (*create)(AdhSolver);
@@ -53,6 +104,25 @@ PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetPredictorType - Gets the name of the contact-set predictor
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. type - the predictor's name, for example `ADHPREDICTORNONE`
+
+  Level: intermediate
+
+  Note:
+  The string is the solver's: do not free it. Before `AdhSolverSetUp()` it may still be the provisional default
+  polonsky-keer, which set-up replaces by none on a free boundary.
+
+.seealso: `AdhSolverSetPredictorType()`, `AdhPredictorRegister()`
+@*/
 PetscErrorCode AdhSolverGetPredictorType(AdhSolver s, AdhPredictorType *type)
 {
   PetscFunctionBegin;

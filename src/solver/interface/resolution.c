@@ -53,6 +53,25 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhCurveGetPullOffState - Finds the recorded state carrying the largest tension: the pull-off force
+
+  Not Collective
+
+  Input Parameter:
+. c - the curve, from `AdhSolverGetCurve()`
+
+  Output Parameter:
+. state - the row of the state with the most negative force (the first of equal ones), or -1 if no state carried
+          tension
+
+  Level: intermediate
+
+  Note:
+  The pull-off force is then -c->state[state].force.
+
+.seealso: `AdhSolverGetCurve()`, `AdhSolverGetResolution()`, `AdhSolverIsPulledOff()`
+@*/
 PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
 {
   PetscFunctionBegin;
@@ -75,6 +94,37 @@ PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
   return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS));
 }
 
+/*@
+  AdhSolverGetResolution - Tells how well the grid resolves the adhesion
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. r - the set-up estimate of the JKR contact radius of the smallest asperities (or of the sphere) in grid spacings;
+      whether some recorded state had points in contact; the curve's state of the largest tension, with its force,
+      the share of its tension carried by contact patches too small to be resolved and its smallest patch carrying a
+      net tension; and the verdict
+
+  Level: intermediate
+
+  Notes:
+  The estimate: a summit of tip radius R with work of adhesion dgamma has the JKR contact radius
+  a_c = (9 pi dgamma R^2 / (8 E*))^(1/3) at pull-off, and a detachment criterion converges with the grid only where
+  a_c spans many elements. R is the sphere's radius on either boundary; for a rough surface or a topography on a
+  periodic cell it is the mean summit radius of a Gaussian isotropic surface (Nayak 1971), from the rms of the
+  Laplacian of h. With a dgamma field the weakest adhesion present counts (the smallest a_c). It is 0, no estimate,
+  without adhesion, with -adh_critical_stress, and for other profiles. It is made at set-up and whenever the profile
+  or the dgamma field changes.
+
+  The verdict r->resolved, meaningful when r->state >= 0: at most 10% of the tension at the largest tension is carried
+  by patches of fewer than `ADH_RESOLVED_PATCH` points, and the estimate, if there is one, is at least 10 grid
+  spacings. Computed from the curve, so the same on every rank.
+
+.seealso: `AdhSolverResolutionView()`, `AdhCurveGetPullOffState()`, `AdhSolverGetCurve()`, `AdhSolverComputeState()`
+@*/
 PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
 {
   PetscFunctionBegin;
@@ -93,6 +143,28 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverResolutionView - Prints how well the grid resolves the adhesion
+
+  Collective
+
+  Input Parameters:
++ s      - the solver
+- viewer - an ASCII viewer, or `NULL` for standard output on the solver's communicator
+
+  Level: intermediate
+
+  Notes:
+  One line gives the estimate of `AdhSolverGetResolution()` when there is one, with a warning below 10 grid spacings
+  that the pull-off force depends on the grid. When a recorded state carried tension a second line follows on the state
+  of the largest tension: the share of its tension in patches of fewer than `ADH_RESOLVED_PATCH` elements, its smallest
+  patch with a net tension, and the verdict. Nothing is printed when the curve has states and none touched (the path
+  has warned that it never touches).
+
+  The adhbem executable prints it at the end of a run.
+
+.seealso: `AdhSolverGetResolution()`, `AdhSolverView()`, `AdhSolverSolvePath()`
+@*/
 PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
 {
   AdhResolution r;

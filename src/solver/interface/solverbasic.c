@@ -6,6 +6,32 @@
 const char *const AdhStarts[]   = {"hertz", "adhesive", "AdhStart", "ADH_START_", NULL};
 const char *const AdhAttaches[] = {"penetration", "reach", "griffith", "AdhAttach", "ADH_ATTACH_", NULL};
 
+/*@
+  AdhSolverCreate - Creates an adhesive contact solver with the default problem and settings
+
+  Collective
+
+  Input Parameter:
+. comm - the MPI communicator of the solver
+
+  Output Parameter:
+. solver - the new solver
+
+  Level: beginner
+
+  Notes:
+  The defaults: a free boundary, E* = 1, no adhesion (dgamma = 0), a sphere of radius 1 (punch radius 0.25 and cone
+  slope 0.1 for those indenters) on a 64 x 64 grid of side 1, a Hertz start, the path 0.01,0 with 10 steps per leg,
+  displacement control (`ADHCONTROLDISPLACEMENT`), the crack-closure detachment criterion (`ADHCRITERIONCRACKCLOSURE`)
+  with the griffith attach rule, and the polonsky-keer predictor, which `AdhSolverSetUp()` replaces by none on a free
+  boundary unless a predictor was chosen.
+
+  Change them with `AdhSolverSetFromOptions()` and the setters, then call `AdhSolverSetUp()`, or let the first
+  `AdhSolverStart()`, `AdhSolverStep()` or `AdhSolverSolvePath()` call it. Free the solver with `AdhSolverDestroy()`.
+
+.seealso: `AdhSolverSetFromOptions()`, `AdhSolverSetUp()`, `AdhSolverSolvePath()`, `AdhSolverDestroy()`,
+          `AdhSolverSetOptionsPrefix()`, `AdhSolverView()`
+@*/
 PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
 {
   AdhSolver s;
@@ -56,6 +82,25 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetOptionsPrefix - Sets the prefix of every option the solver reads, its grid's and its KSP's included
+
+  Logically Collective
+
+  Input Parameters:
++ s      - the solver
+- prefix - the prefix, without a leading hyphen, or `NULL` for none
+
+  Level: intermediate
+
+  Notes:
+  With the prefix "a_" the solver reads -a_adh_gamma, -a_adh_n, and so on, and the KSP of its contact-set solves reads
+  -a_adh_ksp_rtol. The string is copied.
+
+  Call it before `AdhSolverSetFromOptions()`, and before `AdhSolverSetUp()`, which gives the KSP its prefix.
+
+.seealso: `AdhSolverSetFromOptions()`, `AdhSolverCreate()`, `AdhSolverSetUp()`
+@*/
 PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
 {
   PetscFunctionBegin;
@@ -65,6 +110,25 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetGrid - Gets the element grid of the solver
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. grid - the grid: its sizes, its element sizes, and the rows of each rank
+
+  Level: intermediate
+
+  Note:
+  The grid belongs to the solver: do not destroy it. It exists from `AdhSolverCreate()` on; its element sizes and
+  the rows of each rank are set by `AdhSolverSetUp()`.
+
+.seealso: `AdhSolverGetCompliance()`, `AdhSolverGetFields()`, `AdhGridGetOwnership()`, `AdhGridCreateVector()`
+@*/
 PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
 {
   PetscFunctionBegin;
@@ -72,6 +136,26 @@ PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetCompliance - Gets the half-space compliance K of the solver, u = K p on the whole grid
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. K - the compliance, a shell matrix applied with FFTW (`NULL` before `AdhSolverSetUp()`)
+
+  Level: advanced
+
+  Note:
+  The matrix belongs to the solver: do not destroy it. `AdhSolverSetUp()` makes it with `MatCreateAdhCompliance()` for
+  the solver's boundary. The contact-set solves may apply other operators (the compliance on the set's bounding box on
+  a free boundary, K + c0 (1 1^T)/N under force control on a periodic cell); this is always the whole grid's K.
+
+.seealso: `MatCreateAdhCompliance()`, `AdhSolverGetGrid()`, `AdhSolverGetFields()`
+@*/
 PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
 {
   PetscFunctionBegin;
@@ -79,6 +163,26 @@ PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetContactSet - Gets the current contact set, the grid points in contact
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. is - the set: on each rank the global indices (j Nx + i) of its own points in contact (`NULL` before `AdhSolverSetUp()`)
+
+  Level: intermediate
+
+  Note:
+  The `IS` belongs to the solver: do not destroy it. The solver destroys it and makes a new one whenever the set
+  changes, so get it again after each `AdhSolverStart()` or `AdhSolverStep()` (or keep one with
+  `PetscObjectReference()`). Its global size is the number of points in contact.
+
+.seealso: `AdhSolverGetFields()`, `AdhSolverGetState()`, `AdhSolverGetGrid()`
+@*/
 PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
 {
   PetscFunctionBegin;
@@ -86,6 +190,35 @@ PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetFields - Gets the fields of the current state: pressure, displacement, gap, profile, critical stress
+
+  Collective if `u` or `Sigma` is requested, otherwise Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameters:
++ p     - the pressure p (or `NULL`)
+. u     - the displacement u = K p (or `NULL`)
+. g     - the gap g = h - d + u (or `NULL`)
+. h     - the indenter profile h (or `NULL`)
+- Sigma - the critical stress Sigma (or `NULL`)
+
+  Level: intermediate
+
+  Notes:
+  Borrowed references: the vectors belong to the solver, do not destroy them. They are grid vectors
+  (`AdhGridCreateVector()`), made by `AdhSolverSetUp()`.
+
+  The solver keeps no u, nor a Sigma vector for a uniform dgamma: asking for them (non-`NULL`) makes them, current for
+  this state. A u made so is kept and brought up to date by every later `AdhSolverStep()`; it is computed as
+  g - h + d. A uniform Sigma vector is kept and set again whenever Sigma is computed (every `AdhSolverSetUp()`); it is
+  destroyed when a dgamma field is set after set-up (`AdhSolverSetWorkOfAdhesionField()`): get it again then. With a
+  dgamma field Sigma is the field's critical stress.
+
+.seealso: `AdhSolverGetState()`, `AdhSolverGetContactSet()`, `AdhSolverGetCriticalStress()`, `AdhSolverGetCompliance()`
+@*/
 PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma)
 {
   PetscFunctionBegin;
@@ -97,6 +230,29 @@ PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, V
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetCriticalStress - Gets the critical tensile stress Sigma of the scalar work of adhesion
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. Sigma - the mesh-dependent Sigma = sqrt(hx hy E* dgamma / chi) (Pohrt & Popov eq. 13), or the stress fixed by
+          -adh_critical_stress
+
+  Level: intermediate
+
+  Notes:
+  Computed by `AdhSolverSetUp()`, at every call: 0 before set-up and without adhesion.
+
+  With a dgamma field (`AdhSolverSetWorkOfAdhesionField()`, -adh_gamma_field) this is still the Sigma of the scalar
+  dgamma (-adh_gamma), for reports; the field's critical stress is the `Sigma` vector of `AdhSolverGetFields()`. A
+  stress fixed by -adh_critical_stress replaces the field's too.
+
+.seealso: `AdhSolverGetFields()`, `AdhCriticalStress()`, `AdhSolverSetWorkOfAdhesionField()`
+@*/
 PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
 {
   PetscFunctionBegin;
@@ -104,6 +260,29 @@ PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetProgress - Sets when `AdhSolverSolvePath()` prints progress lines
+
+  Logically Collective
+
+  Input Parameters:
++ s       - the solver
+- seconds - the seconds of a path before its first progress line, >= 0; 0 for none
+
+  Options Database Key:
+. -adh_progress <5> - the same, read by `AdhSolverSetFromOptions()`
+
+  Level: intermediate
+
+  Notes:
+  A progress line gives the state, the time so far and an estimate of the time left. After the first, one comes every
+  tenth of the time so far or every `seconds`, whichever is longer. Lines are printed only inside
+  `AdhSolverSolvePath()`, and not with -adh_monitor, which prints a line per state instead.
+
+  A negative or NaN value is an error.
+
+.seealso: `AdhSolverGetProgress()`, `AdhSolverSolvePath()`, `AdhSolverMonitorSet()`, `AdhSolverMonitorDefault()`
+@*/
 PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
 {
   PetscFunctionBegin;
@@ -112,6 +291,21 @@ PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetProgress - Gets the seconds of a path before its first progress line
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. seconds - the seconds before the first progress line of `AdhSolverSolvePath()` (0: none; 5 by default)
+
+  Level: intermediate
+
+.seealso: `AdhSolverSetProgress()`, `AdhSolverSolvePath()`
+@*/
 PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
 {
   PetscFunctionBegin;
@@ -119,6 +313,24 @@ PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetBoundary - Gets the boundary mode: free (an isolated contact) or periodic (a periodic cell)
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. boundary - `ADH_BOUNDARY_FREE` (the default) or `ADH_BOUNDARY_PERIODIC`
+
+  Options Database Key:
+. -adh_boundary <free,periodic> - the boundary, read by `AdhSolverSetFromOptions()`
+
+  Level: intermediate
+
+.seealso: `AdhSolverSetFromOptions()`, `AdhSolverGetCompliance()`
+@*/
 PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
 {
   PetscFunctionBegin;
@@ -126,6 +338,29 @@ PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverGetCurve - Gets the curve: the states recorded so far
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. curve - the curve: curve->n states, curve->state[k] the k-th, an `AdhState`
+
+  Level: beginner
+
+  Notes:
+  The curve belongs to the solver: do not free it. `AdhSolverSolvePath()` and `AdhSolverRecordState()` append states to
+  it, and `AdhSolverStart()` and `AdhSolverSolvePath()` begin it anew. The array curve->state may move when a state is
+  appended: read it through the curve each time. Each rank holds its copy.
+
+  The columns of a state, in the order of the CSV file, are `AdhCurveColumns`; `AdhStateValue()` gives one of them.
+
+.seealso: `AdhSolverSolvePath()`, `AdhSolverRecordState()`, `AdhStateValue()`, `AdhCurveGetPullOffState()`,
+          `AdhSolverWriteOutput()`
+@*/
 PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
 {
   PetscFunctionBegin;
@@ -133,6 +368,23 @@ PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverDestroy - Destroys the solver and everything it holds
+
+  Collective
+
+  Input Parameter:
+. solver - the solver; `*solver` may be `NULL`
+
+  Level: beginner
+
+  Note:
+  The monitors' contexts are destroyed with their destroy functions (`AdhSolverMonitorCancel()`), and the solver
+  drops its references to the vectors it was given (`AdhSolverSetTopography()`, `AdhSolverSetWorkOfAdhesionField()`).
+  Sets `*solver` to `NULL`.
+
+.seealso: `AdhSolverCreate()`, `AdhSolverMonitorCancel()`
+@*/
 PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
 {
   AdhSolver s = *solver;

@@ -35,6 +35,66 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
 }
 #define ParseFields(s) ParseFields_Private(PetscOptionsObject, s)
 
+/*@
+  AdhSolverSetFromOptions - Sets the problem and the solver's settings from the options database
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Options Database Keys:
++ -adh_n <N or Nx,Ny>                                - elements per side (default 64)
+. -adh_size <L or Lx,Ly>                             - the domain's side lengths (default 1)
+. -adh_E_star <E>                                    - the reduced modulus, or -adh_E1, -adh_nu1, -adh_E2, -adh_nu2
+. -adh_indenter <sphere,punch,cone,rough,file,array> - the indenter; -adh_radius, -adh_topography FILE, -adh_hurst, ...
+. -adh_gamma <dgamma>                                - the work of adhesion (0: non-adhesive)
+. -adh_gamma_field <FILE>                            - a work of adhesion field dgamma(x,y), .npy or HDF5, read at set-up
+. -adh_criterion <crack-closure,pohrt-popov>         - the detachment criterion, `AdhSolverSetCriterionType()`
+. -adh_criterion_radius <16>                         - crack-closure's averaging radius in grid spacings, in [1, 64]
+. -adh_criterion_radius_max <64>                     - its largest radius near the detachment, at most 128
+. -adh_critical_stress <0>                           - a fixed critical stress replacing Sigma (0: Sigma)
+. -adh_boundary <free,periodic>                      - an isolated contact or a periodic cell
+. -adh_control <displacement,force>                  - the load control, `AdhSolverSetControlType()`
+. -adh_path <v0,v1,...>                              - the path's breakpoints, at least two (default 0.01,0)
+. -adh_steps <10>                                    - the steps per leg of the path
+. -adh_start <hertz,adhesive>                        - the starting state, `AdhSolverStart()`
+. -adh_attach <griffith,reach,penetration>           - when a point joins the set
+. -adh_predictor <polonsky-keer,none>                - the contact-set predictor, `AdhSolverSetPredictorType()`
+. -adh_pulloff_rtol <1e-3>                           - force control: the relative resolution of the pull-off force
+. -adh_output <FILE>                                 - the results file FILE.h5, and FILE.csv
+. -adh_fields [LIST]                                 - the fields written: pressure, displacement, gap, contact (alone: all)
+. -adh_monitor                                       - one line per state, `AdhSolverMonitorDefault()`
+. -adh_progress <5>                                  - progress lines of a path, `AdhSolverSetProgress()`
+. -adh_checkpoint <FILE>                             - a checkpoint, with -adh_checkpoint_every and -adh_restart FILE
+. -adh_certify <true>                                - the certified early stop of intermediate solves
+. -adh_cascade_local <F>                             - local solves after a set update lets points go
+- -adh_max_outer <100000>                            - the largest number of set updates in one step
+
+  Level: beginner
+
+  Notes:
+  The options come in the groups -help shows, with every option and its default: the grid; the material; the
+  indenter and the rough surface; the adhesion (work of adhesion, criterion); the boundary, path and load control
+  (with the predictor); output, monitoring and long runs; and the solver's tuning (-adh_certify, -adh_cascade_*,
+  -adh_box, -adh_max_outer, -adh_memory_check). docs/options.md lists them by task.
+
+  Values out of range are errors naming the option: -adh_gamma below 0 or not finite, -adh_critical_stress below 0,
+  -adh_criterion_radius outside [1, 64], -adh_criterion_radius_max above 128 or below -adh_criterion_radius,
+  -adh_cascade_rtol outside [0, 1), -adh_cascade_apart outside [0, 64], -adh_cascade_local below 0 or NaN,
+  -adh_cascade_local_rtol and -adh_pulloff_rtol outside (0, 1), -adh_steps, -adh_checkpoint_every and
+  -adh_fields_stride below 1, -adh_progress below 0 or NaN, a point of -adh_path that is not finite; and
+  -adh_cascade_apart or -adh_cascade_local under force control. -adh_path takes at most 256 points.
+
+  -adh_monitor sets `AdhSolverMonitorDefault()` once. The KSP of the contact-set solves reads its options
+  (-adh_ksp_rtol, ...) at set-up, and here again once it exists. A misspelled -adh_ option is refused at set-up.
+
+  Call it before `AdhSolverSetUp()`: what set-up builds from the options (the grid, the boundary, the profile, the
+  operators) is not rebuilt by a later call, and the load control and the criterion cannot change after set-up.
+
+.seealso: `AdhSolverCreate()`, `AdhSolverSetUp()`, `AdhSolverSetOptionsPrefix()`, `AdhSolverSetCriterionType()`,
+          `AdhSolverSetControlType()`, `AdhSolverSetPredictorType()`, `AdhSolverMonitorSet()`, `AdhSolverView()`
+@*/
 PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
 {
   PetscInt          n = 256;

@@ -3,6 +3,35 @@
    only creates: the contact set belongs to the step. */
 #include "solver/solverimpl.h"
 
+/*@
+  AdhSolverSetWorkOfAdhesionField - Replaces the scalar work of adhesion by a field dgamma(x,y)
+
+  Collective
+
+  Input Parameters:
++ s     - the solver
+- gamma - the work of adhesion at each grid point, a `Vec` on the grid (`AdhGridCreateVector()`), >= 0 everywhere
+
+  Options Database Keys:
++ -adh_gamma_field <FILE>          - a field read at set-up from a file instead: .npy (Ny, Nx), or HDF5
+- -adh_gamma_field_dataset <gamma> - the dataset's name inside an HDF5 file
+
+  Level: intermediate
+
+  Notes:
+  The critical stress becomes the field Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi), unless -adh_critical_stress
+  fixes it. The scalar -adh_gamma still gives the Sigma of `AdhSolverGetCriticalStress()`, for reports. The field
+  replaces one read from -adh_gamma_field.
+
+  After set-up the field is checked against the grid's layout and for finite values, and Sigma is computed again, as
+  are the estimate of `AdhSolverGetResolution()` (from the weakest adhesion present) and the window of
+  -adh_cascade_local; the contact state stays. Before set-up only its sign is checked here.
+
+  The solver keeps a reference to gamma, not a copy: the caller may destroy its own reference, and values it changes
+  later enter the critical stress at the next `AdhSolverSetUp()`, which every `AdhSolverStep()` calls.
+
+.seealso: `AdhSolverGetCriticalStress()`, `AdhSolverGetFields()`, `AdhSolverSetTopography()`, `AdhSolverSetUp()`
+@*/
 PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
 {
   PetscReal min;
@@ -129,6 +158,45 @@ static PetscErrorCode WarnFreeTopography(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetUp - Builds the problem on the grid: the profile, critical stress, compliance, preconditioner and KSP
+
+  Collective
+
+  Input Parameter:
+. s - the solver
+
+  Options Database Keys:
++ -adh_ksp_rtol <1e-10>                                   - the relative tolerance of the CG solves on the contact set
+. -adh_ksp_max_it <100000>                                - their largest number of iterations
+. -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW's planner (default measure)
+. -adh_fftw_timelimit <seconds>                           - the seconds FFTW may spend planning one transform on one rank
+- -adh_fftw_layout <auto,serial,transposed>               - the plans on one rank
+
+  Level: beginner
+
+  Notes:
+  Set-up only creates: the contact set belongs to the step, and is empty after set-up. `AdhSolverStart()`,
+  `AdhSolverStep()` and `AdhSolverSolvePath()` call it, so calling it is optional. The first call does the work; every
+  call, the first included, computes the critical stress Sigma from dgamma, E* and the grid, or takes the stress of
+  -adh_critical_stress.
+
+  The first call also refuses misspelled -adh_ options; chooses the defaults that depend on other settings (the
+  attach rule reach instead of griffith with a criterion other than crack-closure, which refuses griffith; the
+  predictor none on a free boundary unless one was chosen; FFTW plans without a time limit on a periodic cell);
+  refuses a grid that the build's PetscInt cannot index, or whose memory estimate exceeds the node's
+  (`AdhSolverEstimateMemory()`, -adh_memory_check); fills the profile h from the indenter and reads -adh_gamma_field;
+  warns when a rough surface or a topography lies on the default free boundary; and sets up the load control and the
+  criterion.
+
+  The KSP is CG with a nonzero initial guess, the unpreconditioned residual norm, an absolute tolerance of 0 and a
+  shell preconditioner, the periodic stiffness E*|q|/2 restricted to the contact set. Its options prefix is the
+  solver's followed by adh_, and its options are read here (-adh_ksp_ and -adh_pc_ options it does not read are
+  refused).
+
+.seealso: `AdhSolverCreate()`, `AdhSolverSetFromOptions()`, `AdhSolverStart()`, `AdhSolverSolvePath()`,
+          `AdhSolverEstimateMemory()`, `AdhSolverView()`
+@*/
 PetscErrorCode AdhSolverSetUp(AdhSolver s)
 {
   PC       pc;
@@ -200,6 +268,34 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetTopography - Makes the indenter a profile given by the user, a topography on the grid
+
+  Collective
+
+  Input Parameters:
++ s    - the solver
+. z    - the topography, a `Vec` on the grid (`AdhGridCreateVector()`), in the grid's order j Nx + i
+- kind - what z holds: `ADH_TOPOGRAPHY_HEIGHT`, the height of the surface, as instruments, SurfaceTopography and
+         Tamaas give it (the profile is h = max(z) - z: the highest peak touches at d = 0), or `ADH_TOPOGRAPHY_GAP`,
+         the gap h itself
+
+  Level: intermediate
+
+  Notes:
+  The indenter becomes of type array, replacing a -adh_topography file. Before set-up the topography is kept for
+  set-up, which checks it and makes the profile; after set-up the profile is replaced at once and the contact state
+  is cleared: start again with `AdhSolverStart()` or `AdhSolverSolvePath()`. The new profile is built aside, so a
+  topography refused (another layout than the grid's, values that are not finite) leaves the solver as it was.
+  After set-up the mean of h, the estimate of `AdhSolverGetResolution()` and the window of -adh_cascade_local follow
+  the new profile.
+
+  The solver keeps a reference to z: the caller may destroy its own. On the default free boundary a warning says that
+  the topography is taken as an isolated body of the grid's size (-adh_boundary periodic makes it a periodic cell;
+  -adh_boundary free keeps this and silences the warning).
+
+.seealso: `AdhSolverSetWorkOfAdhesionField()`, `AdhSolverGetFields()`, `AdhSolverSetUp()`, `AdhSolverStart()`
+@*/
 PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind)
 {
   AdhIndenter ind = s->indenter;

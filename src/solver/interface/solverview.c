@@ -1,6 +1,29 @@
 /* AdhSolverView: the solver's set-up, in words. */
 #include "solver/solverimpl.h"
 
+/*@
+  AdhSolverView - Prints the solver's set-up in words
+
+  Collective
+
+  Input Parameters:
++ s      - the solver
+- viewer - an ASCII viewer, or `NULL` for standard output on the solver's communicator
+
+  Level: beginner
+
+  Notes:
+  Prints the boundary, the grid, E*, dgamma and Sigma, the indenter (with a rough surface's statistics), the start,
+  the number of path points and the steps per leg, the load control with the lower bound on the eigenvalues of K on
+  the current set and whether the certified early stop is on, the predictor, the cascade options in use, the
+  detachment criterion with its averaging radii and the attach rule, under force control the resolution of the
+  pull-off force, the estimated JKR contact radius of the smallest asperities, the memory estimate of
+  `AdhSolverEstimateMemory()`, and after set-up the KSP. A viewer of another type prints nothing.
+
+  The adhbem executable calls it after set-up when given -adh_view.
+
+.seealso: `AdhSolverEstimateMemory()`, `AdhSolverResolutionView()`, `AdhSolverSetUp()`, `AdhSolverSetFromOptions()`
+@*/
 PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
 {
   PetscBool   isascii;

@@ -1,11 +1,32 @@
-/* Load control displacement (-adh_control displacement, the default): the path holds
-   indentations d; a step is the Pohrt-Popov loop at fixed d: solve on the set, let go what the
-   criterion says, let join what the attach rule says, until the set stands. With
-   -adh_cascade_rtol the solves after a set update stop at that relative residual, and the set is
-   updated on their pressures; once a set stands on one, it is solved to the full tolerance and
-   tested again, so every recorded state is tested on an exact solve. With -adh_cascade_local the
-   points a set update lets go are followed by local solves around them (cascadelocal.c) before
-   the next solve of the whole set. */
+/*MC
+   ADHCONTROLDISPLACEMENT - "displacement", the default load control: the path holds indentations d, and a step is
+   the Pohrt-Popov loop at fixed d
+
+   The loop: solve on the contact set, let go what the criterion says, let join what the attach rule says, until the
+   set stands.
+
+   Options Database Keys:
++  -adh_control displacement - selects this control (the default)
+.  -adh_max_outer <100000>   - the largest number of set updates in one step
+.  -adh_cascade_rtol <0>     - the solves after a set update stop at this relative residual
+.  -adh_cascade_local <F>    - local solves around the points a set update lets go
+-  -adh_cascade_apart <0>    - points may join in an update that lets others go, this many grid spacings away
+
+   Level: beginner
+
+   Notes:
+   With -adh_cascade_rtol the solves after a set update stop at that relative residual, and the set is updated on
+   their pressures; once a set stands on one, it is solved to the full tolerance and tested again, so every recorded
+   state is tested on an exact solve. With -adh_cascade_local the points a set update lets go are followed by local
+   solves around them (cascadelocal.c) before the next solve of the whole set. -adh_cascade_local and
+   -adh_cascade_apart are for this control only.
+
+   Without adhesion a predictor may guess the set first (`AdhSolverSetPredictorType()`). A step that empties a set
+   that had contact ends in pull-off. On a periodic cell d must stay below mean(h): there the cell is in full contact
+   and the force is undetermined (use `ADHCONTROLFORCE`).
+
+.seealso: `AdhSolverSetControlType()`, `ADHCONTROLFORCE`, `AdhSolverStep()`, `AdhSolverIsPulledOff()`
+M*/
 #include "solver/solverimpl.h"
 
 /* Displacement control: the equilibrium set at indentation d, from the current set. */

@@ -1,13 +1,32 @@
-/* Load control force (-adh_control force): the path holds forces F (for a periodic cell, F = mean
-   pressure x cell area); a step finds the d at which the equilibrium set carries exactly F. For a
-   fixed set C the pressure is affine in d, p = d x - y with K_CC x = 1 and K_CC y = h_C, so one
-   extra solve per set update gives the d of that set; then detach and attach as under
-   displacement control, until the set is stable. When the set empties, no equilibrium carries F:
-   the contact has come off.
-   On a periodic cell the mean displacement is free (K has no mean mode), and the whole cell in
-   contact makes K_CC singular. Under force control the mean pressure is known, so the solve uses
-   K + c0 (1 1^T)/N instead, positive definite on every set, and takes the mean displacement
-   c0 mean(p) back out of d. */
+/*MC
+   ADHCONTROLFORCE - "force": the path holds forces F, and a step finds the indentation d at which the equilibrium
+   contact set carries exactly F
+
+   F is the sum of the pressures times hx hy; for a periodic cell the mean pressure times the cell's area.
+
+   Options Database Keys:
++  -adh_control force        - selects this control
+.  -adh_pulloff_rtol <1e-3>  - the relative resolution of the pull-off force
+-  -adh_max_outer <100000>   - the largest number of set updates in one step
+
+   Level: beginner
+
+   Notes:
+   For a fixed set C the pressure is affine in d, p = d x - y with K_CC x = 1 and K_CC y = h_C, so one extra solve per
+   set update gives the d of that set; then points let go and join as under displacement control, until the set is
+   stable. When the set empties, no equilibrium carries F: the contact has come off. The step then bisects between
+   the previous state's force and F, from the previous state, and ends on the state carrying the largest tension
+   (within -adh_pulloff_rtol), marked pulled off.
+
+   On a periodic cell the mean displacement is free (K has no mean mode), and the whole cell in contact makes K_CC
+   singular. Under force control the mean pressure is known, so the solve uses K + c0 (1 1^T)/N instead, positive
+   definite on every set, and takes the mean displacement c0 mean(p) back out of d.
+
+   A step without contact starts from the first touch if F > 0; F <= 0 leaves the bodies apart. A first force below
+   0 is refused by `AdhSolverSolvePath()`. -adh_cascade_apart and -adh_cascade_local are not available.
+
+.seealso: `AdhSolverSetControlType()`, `ADHCONTROLDISPLACEMENT`, `AdhSolverStep()`, `AdhSolverIsPulledOff()`
+M*/
 #include "solver/solverimpl.h"
 
 static PetscErrorCode SetUp_Force(AdhSolver s)

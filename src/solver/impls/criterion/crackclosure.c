@@ -1,34 +1,58 @@
-/* Detachment criterion crack-closure (-adh_criterion crack-closure, the default): the energy
-   release rate of the contact edge, estimated by virtual crack closure (Rybicki and Kanninen
-   1977; applied to this BEM before in Front. Mech. Eng. 7, 754782 (2021), on the parabolic and
-   sinusoidal contacts). The front is the set's points with an open 4-neighbour. When it lets go,
-   the edge moves by one element: on a straight edge in any direction the set less its front is
-   the set shifted by one element along the grid axis closest to the edge's normal, so a front
-   point gets the opening its neighbour along that axis has now. A front point i under tension
-   -p_i frees G_i = -p_i delta_i / 2 per unit area when it lets go, delta_i the opening (gap) of
-   its open neighbour closest to the edge's normal (estimated from the open points within
-   ADH_NORMAL_RADIUS). Single points of a staircase are not representative (along each run of the
-   staircase G_i rises from about 0.6 to 1.5 times the edge's rate; the mean over a period of the
-   staircase is within 1% of it), so G is averaged along the front, over the front points that can
-   be reached along it within a window, with a weight that fades to zero at the window's radius; a
-   front point lets go when that mean exceeds its dgamma. The window's radius is
-   -adh_criterion_radius grid spacings (default 16), and where the mean over that comes near
-   dgamma, the front's radius of curvature there, up to -adh_criterion_radius_max (default 64): on
-   a curved edge the staircase's runs grow like the square root of the radius of curvature in grid
-   spacings, so that a window of fixed size stops spanning them as the grid is refined, and the
-   first window whose mean runs high lets go (with a fixed radius of 16 the JKR sphere came off
-   0.6%, 1.3%, 1.5% low at a_c/h 25, 50, 100); a window as large as the radius of curvature spans
-   them at any resolution and is still local on the scale on which the edge's release rate varies.
-   A point lets go also under the pohrt-popov rule: the exact energy balance of a point alone,
-   which lets a crack start inside the set. Where the indenter has no face (outside a punch, h =
-   PETSC_INFINITY) the opening is measured from the face extended flat. Costs one compliance
-   multiply per test (the attach test after a test that let nothing go reuses its gap); the
-   certified early stop of intermediate solves applies, with the openings' error bounded through
-   K's row norms (Decide_CrackClosure). Measured (./run bench criterion, docs/validation.md): the
-   work of adhesion it acts with is within 1.4% of dgamma on straight edges in the six directions
-   measured (0 to 45 degrees), within 0.2% on the JKR sphere at a_c/h 25 to 100, converging on the
-   cone and the punch; pohrt-popov: 1.02 to 1.88 on the straight edges, 0-6% high on the curved
-   ones. */
+/*MC
+   ADHCRITERIONCRACKCLOSURE - "crack-closure", the default: a point on the contact edge lets go when the edge's energy
+   release rate, estimated by virtual crack closure and averaged along the edge, exceeds its dgamma
+
+   Virtual crack closure is Rybicki and Kanninen's (1977); it was applied to this BEM before in Front. Mech. Eng. 7,
+   754782 (2021), on the parabolic and sinusoidal contacts. The rate does not depend on the edge's direction on the
+   grid.
+
+   Options Database Keys:
++  -adh_criterion crack-closure   - selects this criterion (the default)
+.  -adh_criterion_radius <16>     - the radius of the window the release rate is averaged in, in grid spacings, in [1, 64]
+.  -adh_criterion_radius_max <64> - near dgamma, the window's radius is the front's radius of curvature up to this,
+                                    at most 128 (equal to -adh_criterion_radius: a fixed window)
+.  -adh_criterion_certify         - the certified early stop of intermediate solves too (off by default)
+-  -adh_attach <griffith>         - griffith, this criterion's mirror for joining points, is the default with it
+
+   Level: beginner
+
+   Notes:
+   The front is the set's points with an open 4-neighbour. When a front point lets go the edge moves by one element:
+   on a straight edge in any direction the set less its front is the set shifted by one element along the grid axis
+   closest to the edge's normal, so a front point gets the opening its neighbour along that axis has now. A front
+   point i under tension -p_i frees G_i = -p_i delta_i / 2 per unit area when it lets go, delta_i the opening (gap) of
+   its open neighbour closest to the edge's normal (the normal estimated from the open points within
+   ADH_NORMAL_RADIUS, 3 grid spacings). Where the indenter has no face (outside a punch, h = PETSC_INFINITY) the
+   opening is measured from the face extended flat.
+
+   Single points of a staircase are not representative: along each run of the staircase G_i rises from about 0.6 to
+   1.5 times the edge's rate, while the mean over a period of the staircase is within 1% of it. So G is averaged
+   along the front, over the front points that can be reached along it within a window, with a weight that fades to
+   zero at the window's radius, and a front point lets go when that mean exceeds its dgamma. The window's radius is
+   -adh_criterion_radius, and where the mean over that comes near dgamma, the front's radius of curvature there, up
+   to -adh_criterion_radius_max. On a curved edge the staircase's runs grow like the square root of the radius of
+   curvature in grid spacings, so a window of fixed size stops spanning them as the grid is refined, and the first
+   window whose mean runs high lets go (with a fixed radius of 16 the JKR sphere came off 0.6%, 1.3%, 1.5% low at
+   a_c/h 25, 50, 100); a window as large as the radius of curvature spans them at any resolution and is still local
+   on the scale on which the edge's release rate varies.
+
+   A point lets go also under the pohrt-popov rule, p < -Sigma: the exact energy balance of a point alone, which lets
+   a crack start inside the set. With dgamma = 0 the criterion reduces to non-adhesive contact: p < 0 lets go. The
+   state's detach ratio is the larger of (G/dgamma)^(1/2) and -p/Sigma.
+
+   A test costs one compliance multiply (the attach test after a test that let nothing go reuses its gap). With
+   -adh_criterion_certify the certified early stop of intermediate solves applies, with the openings' error bounded
+   through K's row norms (Decide_CrackClosure): the same sets with 12-16% fewer FFT pairs and about the default's
+   time, for a cache of each set's walks along the front (about 1 kB a front point). With this criterion
+   -adh_cascade_local is inf, the whole grid, by default under displacement control.
+
+   Measured (./run bench criterion, docs/validation.md): the work of adhesion it acts with is within 1.4% of dgamma on
+   straight edges in the six directions measured (0 to 45 degrees), within 0.2% on the JKR sphere at a_c/h 25 to 100,
+   converging on the cone and the punch; pohrt-popov's: 1.02 to 1.88 on the straight edges, 0-6% high on the curved
+   ones.
+
+.seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONPOHRTPOPOV`, `AdhSolverEstimateMemory()`
+M*/
 #include "solver/solverimpl.h"
 
 /* The rows a rank looks at of one grid vector: the vector (its own rows) and the buffer of the

@@ -1,8 +1,27 @@
-/* Detachment criterion pohrt-popov (-adh_criterion pohrt-popov), the paper's rule: a point lets
-   go when p < -Sigma, Sigma = sqrt(hx hy E* dgamma / chi), the tension at which the elastic energy
-   of one isolated element pays for its surface energy. Calibrated on one element, it lets go late
-   on straight edges: along a grid axis as if dgamma were 1.85 times larger, at 45 degrees 1.34
-   times. */
+/*MC
+   ADHCRITERIONPOHRTPOPOV - "pohrt-popov", the paper's rule: a point of the contact set lets go when p < -Sigma
+
+   Sigma = sqrt(hx hy E* dgamma / chi) is the tension at which the elastic energy of one isolated element pays for its
+   surface energy.
+
+   Options Database Keys:
++  -adh_criterion pohrt-popov - selects this criterion
+.  -adh_critical_stress <S>   - a fixed critical stress replacing the mesh-dependent Sigma (for studies of the criterion)
+-  -adh_certify <true>        - the certified early stop of intermediate solves
+
+   Level: beginner
+
+   Notes:
+   Calibrated on one element, it lets go late on straight edges: along a grid axis as if dgamma were 1.85 times larger,
+   at 45 degrees 1.34 times. With dgamma = 0 it reduces to non-adhesive contact: p < 0 lets go.
+
+   Its certified early stop is decided by p alone: every point whose margin |p + Sigma| exceeds the error bound of the
+   iterate lets go (or stays) as it would at the exact solution; cheap, it is checked at every iteration. The state's
+   detach ratio is max(-p/Sigma) on the set. With this criterion the attach rule is reach by default (griffith is
+   refused), and -adh_cascade_local is 0, the paper's exact cascade, by default.
+
+.seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `AdhSolverGetCriticalStress()`, `AdhCriticalStress()`
+M*/
 #include "solver/solverimpl.h"
 
 /* With detach, every point with p < -Sigma leaves; otherwise *ratio = max(-p/Sigma) on the set. */

@@ -1,9 +1,24 @@
-/* Contact-set predictor polonsky-keer (-adh_predictor polonsky-keer): Polonsky & Keer's
-   conjugate gradient (Wear 1999), with the force constraint (preconditioned with the stiffness
-   E*|q|/2, -adh_predictor_fourier) or at fixed d. Should it lose the whole set, the loop starts
-   from nothing in contact and still ends in the same state. It stops when an iteration changes
-   the pressure by less than -adh_predictor_rtol of its 1-norm, or after -adh_predictor_max_it
-   iterations (the loop goes on from where it got). */
+/*MC
+   ADHPREDICTORPOLONSKYKEER - "polonsky-keer": Polonsky & Keer's conjugate gradient (Wear 1999) guesses the contact set
+   of a step without adhesion, which the set-update loop then certifies
+
+   It works with the force constraint (preconditioned with the stiffness E*|q|/2, -adh_predictor_fourier) or at
+   fixed d.
+
+   Options Database Keys:
++  -adh_predictor polonsky-keer    - selects it (the default on a periodic cell)
+.  -adh_predictor_rtol <1e-8>      - stop when an iteration changes the pressure by less than this of its 1-norm
+.  -adh_predictor_max_it <10000>   - or after this many iterations
+-  -adh_predictor_fourier <true>   - under force control, precondition with the stiffness E*|q|/2
+
+   Level: intermediate
+
+   Notes:
+   After -adh_predictor_max_it iterations the loop goes on from where it got. Should it lose the whole set, the loop
+   starts from nothing in contact and still ends in the same state: the predictor changes the cost, not the answer.
+
+.seealso: `AdhSolverSetPredictorType()`, `ADHPREDICTORNONE`
+M*/
 #include "solver/solverimpl.h"
 
 /* The pressure p >= 0 with the gap g = K p + h - d >= 0 closed where p > 0, on the whole grid,

@@ -133,6 +133,24 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverWriteOutput - Writes the curve recorded so far (and, with -adh_fields, the current fields, as those of the
+  curve's last row) to a results file and its CSV
+
+  Collective
+
+  Input Parameters:
++ s    - the solver
+- file - the results file, FILE.h5; the curve also goes to FILE.csv (and, with fields, FILE.xmf)
+
+  Level: intermediate
+
+  Notes:
+  For states computed with `AdhSolverStart()` and `AdhSolverStep()`; `AdhSolverSolvePath()` writes -adh_output itself,
+  as it goes. The files appear whole or not at all (written as FILE.part and renamed).
+
+.seealso: `AdhSolverSolvePath()`, `AdhSolverGetCurve()`
+@*/
 PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 {
   PetscViewer viewer;

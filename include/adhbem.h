@@ -153,7 +153,7 @@ PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Est
 
 /* ---- solver/: the adhesive contact solver ---- */
 
-typedef struct _n_AdhSolver *AdhSolver;
+typedef struct _p_AdhSolver *AdhSolver; /* a PETSc object of class ADH_CLASSID */
 typedef enum { ADH_START_HERTZ, ADH_START_ADHESIVE } AdhStart;
 PETSC_EXTERN const char *const AdhStarts[];
 /* When a point off the set joins it: penetration (g < 0), reach (g < Sigma K_00: the gap the

@@ -98,23 +98,23 @@ static PetscErrorCode CheckUnprefixedOptions(void)
 static PetscErrorCode Run(AdhSolver solver)
 {
   const AdhCurve *curve;
-  PetscBool       has_help, view = PETSC_FALSE;
+  PetscBool       has_help;
   PetscReal       Fmin = 0, dmin = 0;
 
   PetscFunctionBeginUser;
   PetscCall(AdhSolverSetFromOptions(solver));
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_view", &view, NULL));
   PetscCall(PetscOptionsHasHelp(NULL, &has_help));
   if (has_help) {
     /* The options above were listed as they were read; the solver's KSP ones come with set-up. */
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_view: <FALSE> Print the solver set-up (None)\n"));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_view [ascii[:FILE]]: Print the solver set-up (to FILE) (PetscObjectViewFromOptions)\n"));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_traceback: <FALSE> On an error, print PETSc's traceback instead of one line (None)\n"));
     PetscCall(AdhSolverSetUp(solver));
     PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
   PetscCall(CheckUnprefixedOptions());
-  if (view) PetscCall(AdhSolverView(solver, NULL));
+  /* -adh_view [ascii[:file]]: PETSc's viewer options, as -ksp_view's */
+  PetscCall(PetscObjectViewFromOptions((PetscObject)solver, NULL, "-adh_view"));
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
   {

@@ -403,32 +403,19 @@ static PyObject *py_critical_stress(PyObject *self, PyObject *args)
   return PyFloat_FromDouble(AdhCriticalStress(hx, hy, Estar, dgamma));
 }
 
-/* ---- the solver, held in a capsule; the Python class in __init__.py wraps it ---- */
+/* ---- the solver: a PETSc object, handed to Python as a petsc4py PETSc.Object (named, viewed,
+   reference counted and destroyed like any); the class Solver in solver.py wraps it ---- */
 
-static void solver_capsule_destroy(PyObject *cap)
+static AdhSolver solver_get(PyObject *obj)
 {
-  AdhSolver s = (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
-  /* After PetscFinalize (interpreter exit) PETSc objects are gone already. */
-  if (s && !PetscFinalizeCalled) (void)AdhSolverDestroy(&s);
-}
-
-/* destroy(): frees the solver now, collectively, instead of whenever each rank's garbage
-   collector reaches it; the capsule is renamed, so that a later use is refused. */
-static PyObject *py_solver_destroy(PyObject *self, PyObject *args)
-{
-  PyObject *cap;
-  AdhSolver s;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  if (!PyCapsule_IsValid(cap, "AdhSolver")) Py_RETURN_NONE; /* destroyed already */
-  s = (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
-  if (PyCapsule_SetDestructor(cap, NULL) || PyCapsule_SetName(cap, "AdhSolver (destroyed)")) return NULL;
-  PyPetscCall(AdhSolverDestroy(&s));
-  Py_RETURN_NONE;
-}
-
-static AdhSolver solver_get(PyObject *cap)
-{
-  return (AdhSolver)PyCapsule_GetPointer(cap, "AdhSolver");
+  PetscObject  o = PyPetscObject_Get(obj);
+  PetscClassId id;
+  if (!o) return NULL;
+  if (PetscObjectGetClassId(o, &id) || id != ADH_CLASSID) {
+    PyErr_SetString(PyExc_TypeError, "not an adhbem solver");
+    return NULL;
+  }
+  return (AdhSolver)o;
 }
 
 static PyObject *py_solver_create(PyObject *self, PyObject *args)
@@ -449,7 +436,11 @@ static PyObject *py_solver_create(PyObject *self, PyObject *args)
     (void)AdhSolverDestroy(&s);
     PyPetscRaise(ierr);
   }
-  return PyCapsule_New(s, "AdhSolver", solver_capsule_destroy);
+  {
+    PyObject *obj = PyPetscObject_New((PetscObject)s); /* petsc4py takes a reference of its own */
+    PyPetscCall(AdhSolverDestroy(&s));
+    return obj;
+  }
 }
 
 static PyObject *state_columns(const AdhState *);
@@ -486,6 +477,7 @@ static PyObject *start_or_step(PyObject *args, PetscBool start)
   PetscLogDouble t0;
   if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
   s = solver_get(cap);
+  if (!s) return NULL;
   PyPetscCall(PetscTime(&t0));
   if (start) PyPetscCall(AdhSolverStart(s, d));
   else PyPetscCall(AdhSolverStep(s, d));
@@ -510,7 +502,9 @@ static PyObject *py_solver_path(PyObject *self, PyObject *args)
   PetscInt         n, steps;
   const PetscReal *path;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverGetPath(solver_get(cap), &n, &path, &steps));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverGetPath(solver, &n, &path, &steps));
   list = PyList_New(n);
   for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(list, k, PyFloat_FromDouble((double)path[k]));
   return Py_BuildValue("Nn", list, (Py_ssize_t)steps);
@@ -520,14 +514,18 @@ static PyObject *py_solver_state(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  return state_dict(solver_get(cap));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  return state_dict(solver);
 }
 
 static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverSolvePath(solver_get(cap)));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverSolvePath(solver));
   Py_RETURN_NONE;
 }
 
@@ -556,9 +554,15 @@ static PetscErrorCode PythonMonitor(AdhSolver s, PetscInt step, const AdhState *
   return 0;
 }
 
+/* The solver may be destroyed by petsc4py's clean-up at interpreter exit, when Python no longer
+   runs: the callable is then left to the exiting interpreter. */
 static PetscErrorCode PythonMonitorDestroy(void **ctx)
 {
-  Py_XDECREF((PyObject *)*ctx);
+  if (*ctx && Py_IsInitialized() && !_Py_IsFinalizing()) {
+    PyGILState_STATE gil = PyGILState_Ensure();
+    Py_DECREF((PyObject *)*ctx);
+    PyGILState_Release(gil);
+  }
   *ctx = NULL;
   return 0;
 }
@@ -567,6 +571,8 @@ static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
 {
   PyObject *cap, *fn;
   if (!PyArg_ParseTuple(args, "OO", &cap, &fn)) return NULL;
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
   if (!PyCallable_Check(fn)) {
     PyErr_SetString(PyExc_TypeError, "monitor: expected a callable fn(step, state)");
     return NULL;
@@ -575,7 +581,7 @@ static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
   {
     PetscErrorCode ierr;
     CatchErrorsBegin();
-    ierr = AdhSolverMonitorSet(solver_get(cap), PythonMonitor, fn, PythonMonitorDestroy);
+    ierr = AdhSolverMonitorSet(solver, PythonMonitor, fn, PythonMonitorDestroy);
     CatchErrorsEnd();
     if (ierr) Py_DECREF(fn); /* not kept */
     PyPetscRaise(ierr);
@@ -588,7 +594,9 @@ static PyObject *py_solver_curve(PyObject *self, PyObject *args)
   PyObject       *cap, *dict;
   const AdhCurve *c;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverGetCurve(solver_get(cap), &c));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverGetCurve(solver, &c));
   dict = PyDict_New();
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
     PyObject *l = PyList_New(c->n);
@@ -614,6 +622,7 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   const char *name = "";
   if (!PyArg_ParseTuple(args, "O|s", &cap, &name)) return NULL;
   s = solver_get(cap);
+  if (!s) return NULL;
   /* the displacement and a uniform critical stress are made into vectors only when asked for */
   PyPetscCall(AdhSolverGetFields(s, &p, strcmp(name, "displacement") ? NULL : &u, &g, &h, strcmp(name, "critical_stress") ? NULL : &Sigma));
   PyPetscCall(AdhSolverGetCompliance(s, &K));
@@ -628,7 +637,9 @@ static PyObject *py_solver_sigma(PyObject *self, PyObject *args)
   PyObject *cap;
   PetscReal Sigma;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverGetCriticalStress(solver_get(cap), &Sigma));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverGetCriticalStress(solver, &Sigma));
   return PyFloat_FromDouble((double)Sigma);
 }
 
@@ -637,9 +648,11 @@ static PyObject *py_solver_set_gamma_field(PyObject *self, PyObject *args)
   PyObject *cap, *pyvec;
   Vec       v;
   if (!PyArg_ParseTuple(args, "OO", &cap, &pyvec)) return NULL;
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
   v = PyPetscVec_Get(pyvec);
   if (!v) return NULL;
-  PyPetscCall(AdhSolverSetWorkOfAdhesionField(solver_get(cap), v));
+  PyPetscCall(AdhSolverSetWorkOfAdhesionField(solver, v));
   Py_RETURN_NONE;
 }
 
@@ -652,6 +665,9 @@ static PyObject *py_solver_set_topography(PyObject *self, PyObject *args)
   PetscBool         found = PETSC_FALSE;
 
   if (!PyArg_ParseTuple(args, "OOs", &cap, &pyvec, &kname)) return NULL;
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+
   for (int k = 0; k < 2; k++)
     if (!strcmp(kname, AdhTopographyKinds[k])) { found = PETSC_TRUE; kind = (AdhTopographyKind)k; }
   if (!found) {
@@ -660,7 +676,7 @@ static PyObject *py_solver_set_topography(PyObject *self, PyObject *args)
   }
   v = PyPetscVec_Get(pyvec);
   if (!v) return NULL;
-  PyPetscCall(AdhSolverSetTopography(solver_get(cap), v, kind));
+  PyPetscCall(AdhSolverSetTopography(solver, v, kind));
   Py_RETURN_NONE;
 }
 
@@ -669,7 +685,9 @@ static PyObject *py_solver_write(PyObject *self, PyObject *args)
   PyObject   *cap;
   const char *file;
   if (!PyArg_ParseTuple(args, "Os", &cap, &file)) return NULL;
-  PyPetscCall(AdhSolverWriteOutput(solver_get(cap), file));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverWriteOutput(solver, file));
   Py_RETURN_NONE;
 }
 
@@ -680,8 +698,10 @@ static PyObject *py_solver_progress(PyObject *self, PyObject *args)
   double    seconds = -1;
   PetscReal before;
   if (!PyArg_ParseTuple(args, "O|d", &cap, &seconds)) return NULL;
-  PyPetscCall(AdhSolverGetProgress(solver_get(cap), &before));
-  if (seconds >= 0) PyPetscCall(AdhSolverSetProgress(solver_get(cap), (PetscReal)seconds));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverGetProgress(solver, &before));
+  if (seconds >= 0) PyPetscCall(AdhSolverSetProgress(solver, (PetscReal)seconds));
   return PyFloat_FromDouble((double)before);
 }
 
@@ -691,7 +711,9 @@ static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
   PyObject     *cap;
   AdhResolution r;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverGetResolution(solver_get(cap), &r));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverGetResolution(solver, &r));
   return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False);
 }
 
@@ -699,7 +721,9 @@ static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverResolutionView(solver_get(cap), NULL));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverResolutionView(solver, NULL));
   Py_RETURN_NONE;
 }
 
@@ -707,13 +731,15 @@ static PyObject *py_solver_view(PyObject *self, PyObject *args)
 {
   PyObject *cap;
   if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  PyPetscCall(AdhSolverView(solver_get(cap), NULL));
+  AdhSolver solver = solver_get(cap);
+  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  PyPetscCall(AdhSolverView(solver, NULL));
   Py_RETURN_NONE;
 }
 
 static PyMethodDef methods[] = {
   {"compliance_mult_on_set", py_compliance_mult_on_set, METH_VARARGS, "compliance_mult_on_set(K, x, single) -> y = R K R^T x on x's nonzero points (a periodic compliance)"},
-  {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> capsule (options read with the prefix)"},
+  {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> the solver as a PETSc.Object (options read with the prefix)"},
   {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state, the first row of a new curve"},
   {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state, appended to the curve"},
   {"solver_path", py_solver_path, METH_VARARGS, "solver_path(s) -> (path points, steps per leg)"},
@@ -727,7 +753,6 @@ static PyMethodDef methods[] = {
   {"solver_set_topography", py_solver_set_topography, METH_VARARGS, "solver_set_topography(s, vec, kind): indenter profile from a height map or gap (kind 'height' or 'gap')"},
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
-  {"solver_destroy", py_solver_destroy, METH_VARARGS, "solver_destroy(s): frees the solver (collective)"},
   {"solver_progress", py_solver_progress, METH_VARARGS, "solver_progress(s[, seconds]) -> the -adh_progress before (set when given)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},

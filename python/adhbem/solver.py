@@ -172,10 +172,17 @@ class Solver:
         ``with adhbem.Solver(...) as s:``, rather than leave them to each rank's garbage collector.
         A destroyed solver can no longer be used; fields and the compliance taken from it stay
         valid (petsc4py holds its own references)."""
-        capsule, self._capsule = getattr(self, "_capsule", None), None
-        if capsule is not None:
-            _adhbem.solver_destroy(capsule)
+        obj, self._capsule = getattr(self, "_capsule", None), None
+        if obj is not None:
+            obj.destroy()  # PETSc's reference counting: the C solver goes with the last reference
         self._forget_options()
+
+    @property
+    def petsc(self) -> PETSc.Object:
+        """The C solver as a petsc4py ``PETSc.Object`` (class ``AdhSolver``): name it
+        (``setName``), view it (``view()`` prints what ``-adh_view`` prints), compose objects
+        with it, hold a reference to it."""
+        return self._s
 
     def __enter__(self) -> "Solver":
         return self

@@ -156,6 +156,7 @@ PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
   PetscViewer viewer;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhOutputOpen_Private(s, file, &viewer));
   PetscCall(AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0)));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE}));

@@ -3,6 +3,7 @@
    results layer above it (src/results/). */
 #ifndef ADHBEM_SOLVERIMPL_H
 #define ADHBEM_SOLVERIMPL_H
+#include <petsc/private/petscimpl.h>
 #include <petscviewerhdf5.h>
 #include "adhbem.h"
 #include "geometry/indenter.h"
@@ -69,8 +70,15 @@ PETSC_INTERN AdhResultsOps AdhResults;
 enum { ADH_FIELD_PRESSURE = 1, ADH_FIELD_DISPLACEMENT = 2, ADH_FIELD_GAP = 4, ADH_FIELD_CONTACT = 8, ADH_FIELD_ALL = 15 };
 PETSC_INTERN const char *const AdhFieldNames[4]; /* their names, bit k: AdhFieldNames[k] (solveropts.c) */
 
-struct _n_AdhSolver {
-  MPI_Comm    comm;
+/* The solver's operations as a PETSc object: its view (the types' own ops are in cops, crops, pops). */
+struct _AdhSolverOps {
+  PetscErrorCode (*view)(AdhSolver, PetscViewer);
+};
+
+/* The solver: a PETSc object (PETSCHEADER: name, reference count, options prefix, -info class). */
+struct _p_AdhSolver {
+  PETSCHEADER(struct _AdhSolverOps);
+  MPI_Comm    comm;           /* the communicator it was created on (the header holds PETSc's duplicate) */
   char       *prefix;
   PetscBool   setup;
 

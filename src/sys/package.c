@@ -23,7 +23,7 @@ static PetscErrorCode AdhFinalizePackage(void)
   Not Collective
 
   Notes:
-  It registers the class "Adhesive BEM" (`ADH_CLASSID`) and the log events AdhFFTForward, AdhFFTBackward, AdhComplMult,
+  It registers the class "AdhSolver" (`ADH_CLASSID`, the solver's; -info :adhsolver filters its messages) and the log events AdhFFTForward, AdhFFTBackward, AdhComplMult,
   AdhStepSolve, AdhSetUpdate, AdhPredict, AdhDetachTest, AdhAttachLimits and AdhLocalSolve, initialises FFTW-MPI in double and
   single precision, and registers with `PetscRegisterFinalize()` the clean-up of FFTW-MPI. It is done once: later calls return
   at once, until `PetscFinalize()`. `AdhGridCreate()`, `AdhGridSetUp()` and the operators' constructors call it; the solver's
@@ -40,7 +40,12 @@ PetscErrorCode AdhInitializePackage(void)
   AdhPackageInitialized = PETSC_TRUE;
   fftw_mpi_init();
   fftwf_mpi_init();
-  PetscCall(PetscClassIdRegister("Adhesive BEM", &ADH_CLASSID));
+  PetscCall(PetscClassIdRegister("AdhSolver", &ADH_CLASSID)); /* the class of the solver, a PETSc object (-info :adhsolver, -log_view) */
+  {
+    PetscClassId classids[1];
+    classids[0] = ADH_CLASSID;
+    PetscCall(PetscInfoProcessClass("adhsolver", 1, classids)); /* -info [:~]adhsolver */
+  }
   PetscCall(PetscLogEventRegister("AdhFFTForward", ADH_CLASSID, &ADH_FFTForward));
   PetscCall(PetscLogEventRegister("AdhFFTBackward", ADH_CLASSID, &ADH_FFTBackward));
   PetscCall(PetscLogEventRegister("AdhComplMult", ADH_CLASSID, &ADH_ComplianceMult));

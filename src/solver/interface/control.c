@@ -88,6 +88,7 @@ PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
   PetscBool same;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(PetscStrcmp(s->control_type, type, &same));
   if (same) PetscFunctionReturn(0);
@@ -126,6 +127,7 @@ PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
 PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *type = s->control_type;
   PetscFunctionReturn(0);
 }
@@ -165,6 +167,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscErrorCode ierr;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverSetUp(s));
   PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
@@ -215,6 +218,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
 PetscErrorCode AdhSolverIsPulledOff(AdhSolver s, PetscBool *pulled_off)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *pulled_off = s->pulled_off;
   PetscFunctionReturn(0);
 }

@@ -89,6 +89,7 @@ PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
   PetscBool same;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(PetscStrcmp(s->criterion_type, type, &same));
   if (same) PetscFunctionReturn(0);
@@ -127,6 +128,7 @@ PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
 PetscErrorCode AdhSolverGetCriterionType(AdhSolver s, AdhCriterionType *type)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *type = s->criterion_type;
   PetscFunctionReturn(0);
 }

@@ -83,6 +83,7 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   PetscLogDouble       per_point, per_rank;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
   PetscCallMPI(MPI_Comm_size(shared, &node_size));

@@ -139,6 +139,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
   PetscReal dtouch;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverSetUp(s));
   s->curve.n = 0;
   PetscCall(VecMin(s->h, NULL, &dtouch));
@@ -201,6 +202,7 @@ PetscErrorCode AdhSolverGetState(AdhSolver s, PetscReal *d, PetscReal *F, PetscR
   PetscScalar sum;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(VecSum(s->p, &sum));
   if (d) *d = s->d;
   if (F) *F = PetscRealPart(sum) * s->grid->hx * s->grid->hy;
@@ -239,6 +241,7 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
   PetscInt mults0, ffts0, mults1, ffts1;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(PetscMemzero(st, sizeof(*st)));
   PetscCall(AdhSolverGetState(s, &st->d, &st->force, &st->area, &st->contact_points, &st->outer_iterations, &st->ksp_iterations, &st->compliance_applications));
   /* the statistics' own multiplies (crack-closure's detach_ratio) count with the state */
@@ -286,6 +289,7 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
 PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSolver, PetscInt, const AdhState *, void *), void *ctx, PetscErrorCode (*destroy)(void **))
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCheck(s->nmonitors < ADH_MAX_MONITORS, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "Too many monitors (at most %d)", ADH_MAX_MONITORS);
   s->monitors[s->nmonitors]       = monitor;
   s->monitor_ctx[s->nmonitors]     = ctx;
@@ -314,6 +318,7 @@ PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSol
 PetscErrorCode AdhSolverMonitorCancel(AdhSolver s)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   for (PetscInt k = 0; k < s->nmonitors; k++)
     if (s->monitor_destroy[k]) PetscCall(s->monitor_destroy[k](&s->monitor_ctx[k]));
   s->nmonitors = 0;
@@ -364,6 +369,7 @@ PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhStat
   char           text[32] = "-";
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(PetscTime(&now));
   left = SecondsLeft(s, now);
   if (left >= 0) PetscCall(PetscSNPrintf(text, sizeof(text), left < 10 ? "%.1f" : "%.0f", (double)left));
@@ -420,6 +426,7 @@ static PetscErrorCode Progress(AdhSolver s)
 PetscErrorCode AdhSolverMonitor(AdhSolver s, PetscInt step, const AdhState *st)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   for (PetscInt k = 0; k < s->nmonitors; k++) {
     /* a monitor that fails on one rank stops every rank, not just that one */
     int err = (int)s->monitors[k](s, step, st, s->monitor_ctx[k]);
@@ -455,6 +462,7 @@ PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st
   PetscLogDouble t1;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverComputeState(s, st));
   PetscCall(PetscTime(&t1));
   st->seconds = (PetscReal)(t1 - t0);
@@ -489,6 +497,7 @@ PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st
 PetscErrorCode AdhSolverGetPath(AdhSolver s, PetscInt *npath, const PetscReal *path[], PetscInt *steps)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (npath) *npath = s->npath;
   if (path) *path = s->path;
   if (steps) *steps = s->steps;
@@ -689,6 +698,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   void (*term)(int), (*intr)(int);
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));

@@ -91,6 +91,7 @@ PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
   PetscErrorCode (*create)(AdhSolver);
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(PetscFunctionListFind(AdhPredictorList, type, &create));
   if (!create) {
@@ -126,6 +127,7 @@ PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
 PetscErrorCode AdhSolverGetPredictorType(AdhSolver s, AdhPredictorType *type)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *type = s->predictor_type;
   PetscFunctionReturn(0);
 }

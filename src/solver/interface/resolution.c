@@ -128,6 +128,7 @@ PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
 PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(PetscMemzero(r, sizeof(*r)));
   r->asperity_contact_radius = s->asperity_ac;
   for (PetscInt k = 0; k < s->curve.n; k++)
@@ -171,6 +172,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   char          smallest[96];
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(AdhSolverGetResolution(s, &r));
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */

@@ -37,8 +37,11 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   AdhSolver s;
 
   PetscFunctionBegin;
+  PetscValidPointer(solver, 2);
   PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscNew(&s));
+  PetscCall(PetscHeaderCreate(s, ADH_CLASSID, "AdhSolver", "Adhesive contact solver", "AdhSolver", comm, AdhSolverDestroy, AdhSolverView));
+  s->ops->view             = AdhSolverView;
+  PetscCall(PetscObjectChangeTypeName((PetscObject)s, "bem")); /* one kind of solver; its types are the criterion's, control's, predictor's */
   s->comm                  = comm;
   s->boundary              = ADH_BOUNDARY_FREE;
   s->Estar                 = 1.0;
@@ -104,8 +107,10 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
 PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(PetscFree(s->prefix));
   PetscCall(PetscStrallocpy(prefix, &s->prefix));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)s, prefix)); /* -adh_view through PetscObjectViewFromOptions */
   s->grid->prefix = s->prefix;
   PetscFunctionReturn(0);
 }
@@ -132,6 +137,7 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
 PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *grid = s->grid;
   PetscFunctionReturn(0);
 }
@@ -159,6 +165,7 @@ PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
 PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *K = s->K;
   PetscFunctionReturn(0);
 }
@@ -186,6 +193,7 @@ PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
 PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *is = s->contact;
   PetscFunctionReturn(0);
 }
@@ -222,6 +230,7 @@ PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
 PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, Vec *Sigma)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (p) *p = s->p;
   if (u) PetscCall(AdhSolverGetDisplacement_Private(s, u));
   if (g) *g = s->g;
@@ -256,6 +265,7 @@ PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, V
 PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *Sigma = s->Sigma;
   PetscFunctionReturn(0);
 }
@@ -286,6 +296,7 @@ PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
 PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCheck(seconds >= 0 && !PetscIsNanReal(seconds), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)seconds);
   s->progress = seconds;
   PetscFunctionReturn(0);
@@ -309,6 +320,7 @@ PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
 PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *seconds = s->progress;
   PetscFunctionReturn(0);
 }
@@ -334,6 +346,7 @@ PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
 PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *boundary = s->boundary;
   PetscFunctionReturn(0);
 }
@@ -364,6 +377,7 @@ PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
 PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   *curve = &s->curve;
   PetscFunctionReturn(0);
 }
@@ -391,6 +405,11 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
 
   PetscFunctionBegin;
   if (!s) PetscFunctionReturn(0);
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  if (--((PetscObject)s)->refct > 0) { /* others hold it still */
+    *solver = NULL;
+    PetscFunctionReturn(0);
+  }
   if (s->cops.destroy) PetscCall(s->cops.destroy(s));
   if (s->crops.destroy) PetscCall(s->crops.destroy(s));
   PetscCall(PetscFree(s->field_states));
@@ -427,7 +446,6 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(AdhCurveDestroy_Private(&s->curve));
   PetscCall(AdhGridDestroy(&s->grid));
   PetscCall(PetscFree(s->prefix));
-  PetscCall(PetscFree(s));
-  *solver = NULL;
+  PetscCall(PetscHeaderDestroy(solver));
   PetscFunctionReturn(0);
 }

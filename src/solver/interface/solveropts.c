@@ -105,6 +105,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscBool         monitor_set;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhGridSetFromOptions(s->grid));
   PetscCall(AdhGetReducedModulusFromOptions(s->comm, s->prefix, &s->Estar));
   PetscCall(AdhIndenterSetFromOptions(s->comm, s->prefix, &s->indenter));

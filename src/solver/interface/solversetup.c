@@ -37,6 +37,7 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
   PetscReal min;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (s->setup) PetscCall(AdhFieldCheck(s->grid, "work of adhesion field", gamma));
   PetscCall(VecMin(gamma, NULL, &min));
   PetscCheck(min >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The work of adhesion field must be >= 0 everywhere, its minimum is %g", (double)min);
@@ -204,6 +205,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
   char     kspprefix[256];
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!s->setup) {
     PetscCall(AdhCheckOptions_Private(s->comm, s->prefix));
     /* A periodic cell does every multiply on the whole grid: plan it without a time limit (a
@@ -263,6 +265,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     if (s->cops.setup) PetscCall(s->cops.setup(s));
     if (s->crops.setup) PetscCall(s->crops.setup(s));
     s->setup = PETSC_TRUE;
+    PetscCall(PetscInfo(s, "set up: %" PetscInt_FMT " x %" PetscInt_FMT " grid, %s boundary, criterion %s, control %s, predictor %s, Sigma %g\n", s->grid->Nx, s->grid->Ny, AdhBoundaries[s->boundary], s->criterion_type, s->control_type, s->predictor_type, (double)s->Sigma));
   }
   PetscCall(ComputeCriticalStress(s));
   PetscFunctionReturn(0);
@@ -302,6 +305,7 @@ PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind
   Vec         h;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCheck(z, s->comm, PETSC_ERR_ARG_NULL, "AdhSolverSetTopography: no topography Vec given");
   PetscCheck(kind == ADH_TOPOGRAPHY_HEIGHT || kind == ADH_TOPOGRAPHY_GAP, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "topography kind: height or gap, got %d", (int)kind);
   ind.type = ADH_INDENTER_ARRAY;

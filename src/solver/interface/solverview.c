@@ -30,11 +30,13 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   const char *single = s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : "";
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "AdhSolver: adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
+  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)s, viewer)); /* "AdhSolver Object: (name) N MPI processes" */
   PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
   PetscCall(AdhGridView(s->grid, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));

@@ -98,18 +98,43 @@ def test_layers_use_only_themselves_and_the_layers_below():
         f"{p} uses {', '.join(sorted(u))}" for p, u in sorted(upward.items()))
 
 
+def type_units(kind):
+    """Each registered type of a kind, as the list of its C files: a file impls/<kind>/NAME.c, or a
+    folder impls/<kind>/NAME/ (a type that outgrew one file) with a local header NAMEimpl.h."""
+    base = os.path.join(SRC, "solver", "impls", kind)
+    units = [[p] for p in sorted(glob.glob(os.path.join(base, "*.c")))]
+    units += [sorted(glob.glob(os.path.join(d, "*.c"))) for d in sorted(glob.glob(os.path.join(base, "*", "")))]
+    return units
+
+
 @pytest.mark.parametrize("kind", sorted(KINDS))
 def test_each_registered_type_is_one_file_registered_in_one_place(kind):
-    """An implementation includes only the solver's private header, defines one public function,
-    its create, and solverregis.c registers it: a new type is one file and two lines there."""
+    """An implementation includes only the solver's private header (a folder's files only the
+    folder's header, which includes it), defines one public function, its create (a folder's files
+    share what else they need as ..._Private), and solverregis.c registers it: a new type is one
+    file or folder and two lines there."""
     with open(os.path.join(SRC, REGISTRATION)) as f:
         registration = f.read()
-    files = sorted(glob.glob(os.path.join(SRC, "solver", "impls", kind, "*.c")))
-    assert len(files) >= 2
-    for path in files:
-        rel = os.path.relpath(path, SRC)
-        text = code(rel)
-        assert includes(rel) == ["solver/solverimpl.h"] and len(re.findall(r"#include", code(rel))) == 1, rel
-        public = re.findall(r"^(?!static)[A-Za-z_][\w ]*?\b(\w*Adh\w*)\([^;{]*\)\s*\{", text, re.M)
-        assert len(public) == 1 and public[0].startswith(KINDS[kind]), f"{rel}: public functions {public}"
+    units = type_units(kind)
+    assert len(units) >= 2
+    for files in units:
+        public = []
+        folder = len(files) > 1 or os.path.basename(os.path.dirname(files[0])) != kind
+        for path in files:
+            rel = os.path.relpath(path, SRC)
+            text = code(rel)
+            headers = re.findall(r'#include\s+[<"]([^>"]+)[>"]', code(rel, strings=True))
+            if folder:
+                local = os.path.basename(os.path.dirname(path)) + "impl.h"
+                assert headers == [local], f"{rel} includes {headers}, not only the type's {local}"
+            else:
+                assert includes(rel) == ["solver/solverimpl.h"] and len(headers) == 1, rel
+            public += [n for n in re.findall(r"^(?!static)[A-Za-z_][\w ]*?\b(\w*Adh\w*)\([^;{]*\)\s*\{", text, re.M)
+                       if not n.endswith("_Private")]
+        if folder:
+            header = os.path.join(os.path.dirname(files[0]), os.path.basename(os.path.dirname(files[0])) + "impl.h")
+            with open(header) as f:
+                assert re.findall(r'#include\s+"([^"]+)"', f.read()) == ["solver/solverimpl.h"], header
+        where = os.path.relpath(os.path.dirname(files[0]) if folder else files[0], SRC)
+        assert len(public) == 1 and public[0].startswith(KINDS[kind]), f"{where}: public functions {public}"
         assert re.search(rf"Register\(\w+, {public[0]}\)", registration), f"{public[0]} is not registered in {REGISTRATION}"

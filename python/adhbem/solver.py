@@ -139,7 +139,7 @@ class Solver:
             opts[name] = _option_value(value)
             self._keys.append(name)
         try:
-            self._capsule = _adhbem.solver_create(comm, self.prefix)
+            self._petsc = _adhbem.solver_create(comm, self.prefix)
         except BaseException:
             self._forget_options()
             raise
@@ -161,10 +161,10 @@ class Solver:
     @property
     def _s(self):
         """The C solver; a destroyed Solver refuses to be used."""
-        capsule = getattr(self, "_capsule", None)
-        if capsule is None:
+        obj = getattr(self, "_petsc", None)
+        if obj is None:
             raise RuntimeError("this Solver was destroyed (Solver.destroy() or the end of its with-block)")
-        return capsule
+        return obj
 
     def destroy(self) -> None:
         """Frees the solver and its PETSc objects now. Collective: every rank calls it (as they
@@ -172,7 +172,7 @@ class Solver:
         ``with adhbem.Solver(...) as s:``, rather than leave them to each rank's garbage collector.
         A destroyed solver can no longer be used; fields and the compliance taken from it stay
         valid (petsc4py holds its own references)."""
-        obj, self._capsule = getattr(self, "_capsule", None), None
+        obj, self._petsc = getattr(self, "_petsc", None), None
         if obj is not None:
             obj.destroy()  # PETSc's reference counting: the C solver goes with the last reference
         self._forget_options()

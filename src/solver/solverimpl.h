@@ -331,6 +331,7 @@ PETSC_INTERN PetscErrorCode AdhSolverGetDisplacement_Private(AdhSolver, Vec *);
 PETSC_INTERN PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverClearContact_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt outer);
+PETSC_INTERN PetscErrorCode AdhSolverProgress_Private(AdhSolver); /* -adh_progress's line after a recorded state (monitor.c) */
 PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal d, PetscBool strict);
 PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
 PETSC_INTERN PetscErrorCode AdhPredictorDestroyList_Private(void);

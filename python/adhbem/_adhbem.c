@@ -406,6 +406,15 @@ static PyObject *py_critical_stress(PyObject *self, PyObject *args)
 /* ---- the solver: a PETSc object, handed to Python as a petsc4py PETSc.Object (named, viewed,
    reference counted and destroyed like any); the class Solver in solver.py wraps it ---- */
 
+static AdhSolver solver_get(PyObject *obj);
+
+/* PyArg_ParseTuple's "O&" converter of a solver argument (a TypeError for anything else). */
+static int solver_arg(PyObject *obj, void *out)
+{
+  *(AdhSolver *)out = solver_get(obj);
+  return *(AdhSolver *)out != NULL;
+}
+
 static AdhSolver solver_get(PyObject *obj)
 {
   PetscObject  o = PyPetscObject_Get(obj);
@@ -470,14 +479,11 @@ static PetscErrorCode RecordState(AdhSolver s, PetscLogDouble t0, AdhState *st)
 /* start(d) begins a new curve, as a path does; step(d) adds to it. */
 static PyObject *start_or_step(PyObject *args, PetscBool start)
 {
-  PyObject      *cap;
   double         d;
   AdhSolver      s;
   AdhState       st;
   PetscLogDouble t0;
-  if (!PyArg_ParseTuple(args, "Od", &cap, &d)) return NULL;
-  s = solver_get(cap);
-  if (!s) return NULL;
+  if (!PyArg_ParseTuple(args, "O&d", solver_arg, &s, &d)) return NULL;
   PyPetscCall(PetscTime(&t0));
   if (start) PyPetscCall(AdhSolverStart(s, d));
   else PyPetscCall(AdhSolverStep(s, d));
@@ -498,12 +504,11 @@ static PyObject *py_solver_step(PyObject *self, PyObject *args)
 /* The option path: its points and the steps per leg. */
 static PyObject *py_solver_path(PyObject *self, PyObject *args)
 {
-  PyObject        *cap, *list;
+  AdhSolver solver;
+  PyObject        *list;
   PetscInt         n, steps;
   const PetscReal *path;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetPath(solver, &n, &path, &steps));
   list = PyList_New(n);
   for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(list, k, PyFloat_FromDouble((double)path[k]));
@@ -512,19 +517,15 @@ static PyObject *py_solver_path(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_state(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   return state_dict(solver);
 }
 
 static PyObject *py_solver_solve_path(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverSolvePath(solver));
   Py_RETURN_NONE;
 }
@@ -569,10 +570,9 @@ static PetscErrorCode PythonMonitorDestroy(void **ctx)
 
 static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
 {
-  PyObject *cap, *fn;
-  if (!PyArg_ParseTuple(args, "OO", &cap, &fn)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  AdhSolver solver;
+  PyObject *fn;
+  if (!PyArg_ParseTuple(args, "O&O", solver_arg, &solver, &fn)) return NULL;
   if (!PyCallable_Check(fn)) {
     PyErr_SetString(PyExc_TypeError, "monitor: expected a callable fn(step, state)");
     return NULL;
@@ -591,11 +591,10 @@ static PyObject *py_solver_monitor(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_curve(PyObject *self, PyObject *args)
 {
-  PyObject       *cap, *dict;
+  AdhSolver solver;
+  PyObject       *dict;
   const AdhCurve *c;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetCurve(solver, &c));
   dict = PyDict_New();
   for (PetscInt j = 0; j < AdhCurveNumColumns; j++) {
@@ -612,7 +611,6 @@ static PyObject *py_solver_curve(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_objects(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
   AdhSolver s;
   Vec         p, u = NULL, g, h, Sigma = NULL;
   Mat         K;
@@ -620,9 +618,7 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   AdhGrid     grid;
   AdhBoundary boundary;
   const char *name = "";
-  if (!PyArg_ParseTuple(args, "O|s", &cap, &name)) return NULL;
-  s = solver_get(cap);
-  if (!s) return NULL;
+  if (!PyArg_ParseTuple(args, "O&|s", solver_arg, &s, &name)) return NULL;
   /* the displacement and a uniform critical stress are made into vectors only when asked for */
   PyPetscCall(AdhSolverGetFields(s, &p, strcmp(name, "displacement") ? NULL : &u, &g, &h, strcmp(name, "critical_stress") ? NULL : &Sigma));
   PyPetscCall(AdhSolverGetCompliance(s, &K));
@@ -634,22 +630,19 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_sigma(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
+  AdhSolver solver;
   PetscReal Sigma;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetCriticalStress(solver, &Sigma));
   return PyFloat_FromDouble((double)Sigma);
 }
 
 static PyObject *py_solver_set_gamma_field(PyObject *self, PyObject *args)
 {
-  PyObject *cap, *pyvec;
+  AdhSolver solver;
+  PyObject *pyvec;
   Vec       v;
-  if (!PyArg_ParseTuple(args, "OO", &cap, &pyvec)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&O", solver_arg, &solver, &pyvec)) return NULL;
   v = PyPetscVec_Get(pyvec);
   if (!v) return NULL;
   PyPetscCall(AdhSolverSetWorkOfAdhesionField(solver, v));
@@ -658,15 +651,14 @@ static PyObject *py_solver_set_gamma_field(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_set_topography(PyObject *self, PyObject *args)
 {
-  PyObject         *cap, *pyvec;
+  AdhSolver solver;
+  PyObject         *pyvec;
   const char       *kname;
   Vec               v;
   AdhTopographyKind kind = ADH_TOPOGRAPHY_HEIGHT;
   PetscBool         found = PETSC_FALSE;
 
-  if (!PyArg_ParseTuple(args, "OOs", &cap, &pyvec, &kname)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&Os", solver_arg, &solver, &pyvec, &kname)) return NULL;
 
   for (int k = 0; k < 2; k++)
     if (!strcmp(kname, AdhTopographyKinds[k])) { found = PETSC_TRUE; kind = (AdhTopographyKind)k; }
@@ -682,11 +674,9 @@ static PyObject *py_solver_set_topography(PyObject *self, PyObject *args)
 
 static PyObject *py_solver_write(PyObject *self, PyObject *args)
 {
-  PyObject   *cap;
+  AdhSolver   solver;
   const char *file;
-  if (!PyArg_ParseTuple(args, "Os", &cap, &file)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&s", solver_arg, &solver, &file)) return NULL;
   PyPetscCall(AdhSolverWriteOutput(solver, file));
   Py_RETURN_NONE;
 }
@@ -694,12 +684,10 @@ static PyObject *py_solver_write(PyObject *self, PyObject *args)
 /* -adh_progress of a solver: set it when a value is given, and return the one before. */
 static PyObject *py_solver_progress(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
+  AdhSolver solver;
   double    seconds = -1;
   PetscReal before;
-  if (!PyArg_ParseTuple(args, "O|d", &cap, &seconds)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&|d", solver_arg, &solver, &seconds)) return NULL;
   PyPetscCall(AdhSolverGetProgress(solver, &before));
   if (seconds >= 0) PyPetscCall(AdhSolverSetProgress(solver, (PetscReal)seconds));
   return PyFloat_FromDouble((double)before);
@@ -708,31 +696,25 @@ static PyObject *py_solver_progress(PyObject *self, PyObject *args)
 /* How well the grid resolves the adhesion, as the results file's attributes name it. */
 static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
 {
-  PyObject     *cap;
+  AdhSolver     solver;
   AdhResolution r;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetResolution(solver, &r));
   return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False);
 }
 
 static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverResolutionView(solver, NULL));
   Py_RETURN_NONE;
 }
 
 static PyObject *py_solver_view(PyObject *self, PyObject *args)
 {
-  PyObject *cap;
-  if (!PyArg_ParseTuple(args, "O", &cap)) return NULL;
-  AdhSolver solver = solver_get(cap);
-  if (!solver) return NULL; /* not a solver: the TypeError is set */
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverView(solver, NULL));
   Py_RETURN_NONE;
 }

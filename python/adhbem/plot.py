@@ -223,6 +223,21 @@ def quantities(d, F, A, params, scale=None):
     return (d, F, A), ("indentation $d$", "force $F$", "contact area $A$")
 
 
+def _draw_theory(ax, run, scale, drawn, pair):
+    """The run's analytic curve, if it has one, as quantities pair of (d, F, A) as drawn, over the
+    range of the drawn data's first quantity only."""
+    ref = analytic(run.params, run.curve["d"], run.curve["area"])
+    if not ref:
+        return
+    name, rd, rF, rA = ref
+    q, _ = quantities(rd, rF, rA, run.params, scale)
+    x, y = q[pair[0]], q[pair[1]]
+    drawn = np.concatenate(drawn)
+    lo, hi = (drawn.min(), drawn.max()) if len(drawn) else (x.min(), x.max())
+    keep = (x >= lo) & (x <= hi)
+    ax.plot(x[keep], y[keep], "k:", lw=1.0, label=f"{name} theory")
+
+
 def _colors():
     import matplotlib
     return matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -338,14 +353,8 @@ def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (),
                 ax.plot(x[lost], y[lost], "x", ms=5, mew=1.0, color=color, zorder=5,
                         label="_nolegend_" if lost_drawn else "contact lost")
                 lost_drawn = True
-        ref = analytic(runs[0].params, runs[0].curve["d"], runs[0].curve["area"]) if theory else None
-        if ref:
-            name, rd, rF, rA = ref
-            (rx, ry, _), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
-            drawn = np.concatenate(xs)
-            lo, hi = (drawn.min(), drawn.max()) if len(drawn) else (rx.min(), rx.max())
-            keep = (rx >= lo) & (rx <= hi)  # theory over the data's range only
-            ax.plot(rx[keep], ry[keep], "k:", lw=1.0, label=f"{name} theory")
+        if theory:
+            _draw_theory(ax, runs[0], first_scale, xs, (0, 1))
         ax.set_xlabel(names[0] + (", force control" if runs[0].params.get("control") == "force" else ""))
         ax.set_ylabel(names[1])
         _finish(ax, legend, many)
@@ -386,14 +395,8 @@ def area(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), 
             (_, y, A), _ = quantities(c["d"], c["force"], c["area"], run.params, _scale(run, normalised))
             ys.append(y[visible(c)])
             _draw_legs(ax, y, A, run, colors[i % len(colors)], many)
-        ref = analytic(runs[0].params, runs[0].curve["d"], runs[0].curve["area"]) if theory else None
-        if ref:
-            name, rd, rF, rA = ref
-            (_, ry, rA), _ = quantities(rd, rF, rA, runs[0].params, first_scale)
-            drawn = np.concatenate(ys)
-            lo, hi = (drawn.min(), drawn.max()) if len(drawn) else (ry.min(), ry.max())
-            keep = (ry >= lo) & (ry <= hi)
-            ax.plot(ry[keep], rA[keep], "k:", lw=1.0, label=f"{name} theory")
+        if theory:
+            _draw_theory(ax, runs[0], first_scale, ys, (1, 2))
         ax.set_xlabel(names[1])
         ax.set_ylabel(names[2])
         ax.axvline(0, color="0.75", lw=0.4, zorder=0)
@@ -627,9 +630,6 @@ def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = N
     -------
     matplotlib.figure.Figure
     """
-    import matplotlib
-    from matplotlib.figure import Figure
-
     if width not in ("column", "double"):
         raise UsageError(f"--width: 'column' or 'double', got {width!r}")
     run = Run(results)
@@ -646,6 +646,20 @@ def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = N
     finally:
         run.close()
     panels = ["curve", "area"] + [("map", s) for s in states] + (["resolution"] if resolution_panel else [])
+    # each file read once: the panels take the opened results
+    opened = [r if isinstance(r, Results) else load(r) for r in (results, *compare)]
+    try:
+        return _figure(panels, opened[0], opened[1:], normalised, width, labels)
+    finally:
+        for r, given in zip(opened, (results, *compare)):
+            if r is not given:
+                r.close()
+
+
+def _figure(panels, results, compare, normalised, width, labels):
+    import matplotlib
+    from matplotlib.figure import Figure
+
     with matplotlib.rc_context(STYLE):
         if width == "column":
             ncols, nrows = 2, (len(panels) + 1) // 2

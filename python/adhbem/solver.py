@@ -395,11 +395,12 @@ class Solver:
         ``adhbem.load(FILE).to_pandas()`` gives the same columns of a results file as a DataFrame.
         """
         curve = {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
-        objects = _adhbem.solver_objects(self._s)
-        if objects["boundary"] == "periodic":
-            cell = objects["Lx"] * objects["Ly"]
-            curve["mean_pressure"] = curve["force"] / cell
-            curve["area_fraction"] = curve["area"] / cell
+        if getattr(self, "_cell", None) is None:  # the grid is fixed at set-up: asked for once
+            objects = _adhbem.solver_objects(self._s)
+            self._cell = objects["Lx"] * objects["Ly"] if objects["boundary"] == "periodic" else 0.0
+        if self._cell:
+            curve["mean_pressure"] = curve["force"] / self._cell
+            curve["area_fraction"] = curve["area"] / self._cell
         return curve
 
     def write(self, file: Union[str, os.PathLike]) -> None:

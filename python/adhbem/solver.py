@@ -115,7 +115,10 @@ class Solver:
         # A misspelled keyword is an error, as for any Python function (the C check would name
         # the option with this solver's internal prefix).
         import difflib
+        from .options import solver_options
+        # the solver's own options and every registered type's (-help shows them all)
         known = [name[len("adh_"):] for name in _adhbem.option_names()]
+        known += [o.name for o in solver_options() if o.name not in known]
         for key in options:
             if key in known or key.startswith(("ksp_", "pc_", "local_ksp_")):
                 continue

@@ -93,7 +93,6 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   if (s->sigma_fixed > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "critical_stress", PETSC_REAL, &s->sigma_fixed));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "attach", AdhAttaches[s->attach]));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "predictor", s->predictor_type));
-  if (s->force_control) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulloff_rtol", PETSC_REAL, &s->pulloff_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hx", PETSC_REAL, &g->hx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "hy", PETSC_REAL, &g->hy));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "Lx", PETSC_REAL, &g->Lx));
@@ -106,8 +105,10 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   PetscCall(AdhH5WriteStringAttribute_Private(v, "start", AdhStarts[s->start]));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "control", s->control_type));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "criterion", s->criterion_type));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius", PETSC_REAL, &s->criterion_radius));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "criterion_radius_max", PETSC_REAL, &s->criterion_radius_max));
+  /* the types' own (crack-closure's radii, force control's pull-off tolerance): their views on the HDF5 viewer */
+  if (s->crops.base.view) PetscCall(s->crops.base.view(s, v));
+  if (s->cops.base.view) PetscCall(s->cops.base.view(s, v));
+  if (s->pops.base.view) PetscCall(s->pops.base.view(s, v));
   if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_rtol", PETSC_REAL, &s->cascade_rtol));

@@ -1,8 +1,8 @@
 /* Checkpoint and restart of a path (-adh_checkpoint FILE, -adh_checkpoint_every K, -adh_restart
    FILE): the whole state a step needs, through PETSc's HDF5 viewer.
 
-   A checkpoint holds the contact set and the pressure (and, under force control, the set's unit
-   response and the indentation of its equations), the position on the path (leg and step of
+   A checkpoint holds the contact set and the pressure (and the state of the types that keep one:
+   force control's unit response of the set and the indentation of its equations), the position on the path (leg and step of
    the last recorded state), the curve so far, and the options that shape the problem, which a
    restart must repeat. It is written to FILE.part and renamed over FILE, so a crash while
    writing leaves the previous checkpoint whole. A restart continues the path after the recorded
@@ -23,11 +23,10 @@ typedef struct {
 static const PetscReal AdhCascadeLocalBefore = 0.0;
 
 /* The options that shape the problem, with this run's values. */
-#define ADH_MAX_SHAPES 28
+#define ADH_MAX_SHAPES (28 + 3 * ADH_MAX_TYPE_SHAPES)
 static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
 {
-  PetscInt  n      = 0;
-  PetscBool radius = PETSC_FALSE; /* crack-closure's averaging radius shapes its answer */
+  PetscInt n = 0;
   *Nx = s->grid->Nx;
   *Ny = s->grid->Ny;
   *Lx = s->grid->Lx;
@@ -42,9 +41,6 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_gamma", PETSC_REAL, &s->gamma};
   shape[n++] = (Shape){"-adh_control", PETSC_STRING, s->control_type};
   shape[n++] = (Shape){"-adh_criterion", PETSC_STRING, s->criterion_type};
-  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &radius));
-  if (radius) shape[n++] = (Shape){"-adh_criterion_radius", PETSC_REAL, &s->criterion_radius};
-  if (radius) shape[n++] = (Shape){"-adh_criterion_radius_max", PETSC_REAL, &s->criterion_radius_max};
   shape[n++] = (Shape){"-adh_attach", PETSC_STRING, AdhAttaches[s->attach]};
   shape[n++] = (Shape){"-adh_critical_stress", PETSC_REAL, &s->sigma_fixed};
   shape[n++] = (Shape){"-adh_start", PETSC_STRING, AdhStarts[s->start]};
@@ -53,12 +49,31 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_cascade_apart", PETSC_INT, &s->cascade_apart};
   shape[n++] = (Shape){"-adh_cascade_local", PETSC_REAL, &s->cascade_local, &AdhCascadeLocalBefore};
   if (s->cascade_local > 0) shape[n++] = (Shape){"-adh_cascade_local_rtol", PETSC_REAL, &s->cascade_local_rtol};
-  /* force control's pull-off is found to this tolerance; the predictor's guess is certified, but
-     where a state is not unique (rounding at a pressure of zero) it picks one: it runs only
-     without adhesion */
-  if (s->force_control) shape[n++] = (Shape){"-adh_pulloff_rtol", PETSC_REAL, &s->pulloff_rtol};
+  /* the predictor's guess is certified, but where a state is not unique (rounding at a pressure of
+     zero) it picks one: it runs only without adhesion */
   if (!(s->Sigma > 0 || s->Sigma_field)) shape[n++] = (Shape){"-adh_predictor", PETSC_STRING, s->predictor_type};
+  /* the types' own (crack-closure's radii, force control's pull-off tolerance) */
+  for (PetscInt k = 0; k < 3; k++) {
+    AdhTypeOps      *ops = k == 0 ? &s->crops.base : k == 1 ? &s->cops.base : &s->pops.base;
+    AdhShapingOption typed[ADH_MAX_TYPE_SHAPES];
+    PetscInt         m = 0;
+    if (!ops->shape) continue;
+    PetscCallAbort(PETSC_COMM_SELF, ops->shape(s, &m, typed));
+    for (PetscInt j = 0; j < m; j++) shape[n++] = (Shape){typed[j].option, typed[j].type, typed[j].value, NULL};
+  }
   return n;
+}
+
+/* The types' state (force control's unit response and the indentation of its equations), in the
+   group /state. */
+static PetscErrorCode TypesCheckpoint(AdhSolver s, PetscViewer v, PetscBool load)
+{
+  AdhTypeOps *types[3] = {&s->crops.base, &s->cops.base, &s->pops.base};
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < 3; k++)
+    if (types[k]->checkpoint) PetscCall(types[k]->checkpoint(s, v, load));
+  PetscFunctionReturn(0);
 }
 
 /* Fingerprints of the fields that shape the problem without an option of their own (a topography
@@ -167,7 +182,6 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "states", PETSC_INT, &s->curve.n));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "npath", PETSC_INT, &npath));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "d", PETSC_REAL, &s->d));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "e", PETSC_REAL, &s->e));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pulled_off", PETSC_INT, &pulled));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "joined_previous", PETSC_INT, &s->joined_previous));
   /* where this run's results go (absolute): a restart goes on in that file */
@@ -181,10 +195,7 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   PetscCall(MaskVec(s, &mask));
   PetscCall(VecView(mask, v));
   PetscCall(VecDestroy(&mask));
-  if (s->xunit) {
-    PetscCall(PetscObjectSetName((PetscObject)s->xunit, "xunit"));
-    PetscCall(VecView(s->xunit, v));
-  }
+  PetscCall(TypesCheckpoint(s, v, PETSC_FALSE));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(AdhOutputWriteCurve_Private(s, v));
@@ -272,7 +283,6 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "step", PETSC_INT, NULL, step));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "states", PETSC_INT, NULL, &states));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "d", PETSC_REAL, NULL, &s->d));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "e", PETSC_REAL, NULL, &s->e));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "pulled_off", PETSC_INT, NULL, &pulled));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "joined_previous", PETSC_INT, NULL, &s->joined_previous));
   s->pulled_off        = (PetscBool)(pulled != 0);
@@ -296,10 +306,7 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   for (k = 0; k < s->nlocal; k++) s->in_set[k] = PetscRealPart(m[k]) > 0.5;
   PetscCall(VecRestoreArrayRead(mask, &m));
   PetscCall(VecDestroy(&mask));
-  if (s->xunit) {
-    PetscCall(PetscObjectSetName((PetscObject)s->xunit, "xunit"));
-    PetscCall(VecLoad(s->xunit, v));
-  }
+  PetscCall(TypesCheckpoint(s, v, PETSC_TRUE));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(ReadCurve(s, v, states));

@@ -16,12 +16,51 @@ typedef struct {
   Mat      K, S;   /* free compliance and periodic stiffness on the window */
 } AdhBox;
 
-/* What a load control does (impls/control/): set-up of its own objects, one step to a target (an
-   indentation or a force), and clean-up. */
+/* An option's value that shapes the answer, named as the user gives it: a restart must repeat it
+   (the results layer's checkpoint compares them). */
 typedef struct {
-  PetscErrorCode (*setup)(AdhSolver);
-  PetscErrorCode (*step)(AdhSolver, PetscReal);
-  PetscErrorCode (*destroy)(AdhSolver);
+  const char   *option;
+  PetscDataType type;
+  const void   *value;
+} AdhShapingOption;
+#define ADH_MAX_TYPE_SHAPES 4
+
+/* What every type of the solver's three kinds (criterion, control, predictor) may do besides its
+   kind's work, as PETSc's types do (KSPSetFromOptions_CG, KSPView_CG). Each may be NULL. The
+   type's data is its own (the kind's data pointer), made by its create function and freed by its
+   destroy. */
+typedef struct {
+  PetscErrorCode (*setfromoptions)(AdhSolver, PetscOptionItems *); /* its options, in a -help group of its own */
+  PetscErrorCode (*view)(AdhSolver, PetscViewer); /* ASCII: its lines of AdhSolverView; HDF5: its attributes in the results file */
+  PetscErrorCode (*setup)(AdhSolver);             /* at the solver's set-up, after the operators */
+  PetscErrorCode (*destroy)(AdhSolver);           /* frees its data */
+  /* the options of it that shape the answer, at most ADH_MAX_TYPE_SHAPES */
+  PetscErrorCode (*shape)(AdhSolver, PetscInt *n, AdhShapingOption[]);
+  /* its state in a checkpoint's root group: written (load false) or read */
+  PetscErrorCode (*checkpoint)(AdhSolver, PetscViewer, PetscBool load);
+  /* the bytes it adds to AdhSolverEstimateMemory's model: per grid point and per rank */
+  PetscErrorCode (*memory)(AdhSolver, PetscLogDouble *per_point, PetscLogDouble *per_rank);
+} AdhTypeOps;
+
+/* What a load control's path holds. */
+typedef enum { ADH_TARGET_INDENTATION, ADH_TARGET_FORCE } AdhTarget;
+
+/* What a load control does (impls/control/): one step to a target (an indentation or a force).
+   A step that runs the set-update loop (AdhSolverUpdateSet_Private, setupdate.c) gives it the
+   equilibrium of the current set at the target. */
+typedef struct {
+  AdhTypeOps base;
+  void      *data;
+  AdhTarget  target;   /* what the path holds */
+  PetscBool  cascades; /* its steps re-solve at a fixed target: -adh_cascade_apart and -adh_cascade_local apply */
+  PetscErrorCode (*step)(AdhSolver, PetscReal target);
+  /* the pressure of the current set in equilibrium at the target, or *none: no equilibrium is left
+     (the set has emptied) */
+  PetscErrorCode (*equilibrate)(AdhSolver, PetscReal target, PetscBool *none);
+  /* optional: after a detach test that let nothing go, how fast each gap closes as the set's
+     indentation e rises, and e (the points then join in the order they would touch); rate NULL:
+     all at once */
+  PetscErrorCode (*attach_rate)(AdhSolver, Vec *rate, PetscReal *e);
 } AdhControlOps;
 
 /* What the detach test of the exact solution of a solve is, as far as an iterate tells. */
@@ -30,9 +69,11 @@ typedef enum { ADH_DETACH_IN_DOUBT, ADH_DETACH_NONE, ADH_DETACH_SOME } AdhDetach
 /* What a detachment criterion does (impls/criterion/): evaluate the current state, removing the points
    that let go (detach) or giving the largest demand over its limit on the set (ratio). */
 typedef struct {
-  PetscErrorCode (*setup)(AdhSolver); /* at the solver's set-up: what the criterion needs on the grid */
+  AdhTypeOps base;
+  void      *data;
+  PetscBool  griffith;     /* its detach test leaves the griffith attach rule's limits (s->attach_limit): griffith is its default attach rule */
+  PetscBool  local_solves; /* the default route re-solves the whole set after points let go (-adh_cascade_local inf), where the control allows it */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
-  PetscErrorCode (*destroy)(AdhSolver);
   /* Optional, for the certified early stop of intermediate solves: the detach test of the exact
      solution p*, decided from the iterate xC (on the set) when every point's decision holds for
      any p within perr of it (perr bounds |p - p*| at every point). With the test in doubt,
@@ -42,15 +83,28 @@ typedef struct {
   PetscErrorCode (*decide)(AdhSolver, Vec xC, PetscReal perr, AdhDetachDecision *, PetscReal *needed);
 } AdhCriterionOps;
 
-/* A copy of the contact state (force control: the state before a step, for pull-off). */
+/* What a contact-set predictor does (impls/predictor/): guess a step's set and pressure without
+   adhesion, at an indentation or carrying a force (force true); NULL predict: no guess. */
 typedef struct {
-  char     *in_set;
-  Vec       p, xunit;
-  PetscReal d;
-} AdhSavedState;
+  AdhTypeOps base;
+  void      *data;
+  PetscErrorCode (*predict)(AdhSolver, PetscBool force, PetscReal target);
+} AdhPredictorOps;
+
+/* The registries of the three kinds (interface/criterion.c, control.c, predictor.c); the built-in
+   types are registered in impls/register.c. */
+PETSC_INTERN AdhRegistry AdhCriteria, AdhControls, AdhPredictors;
+PETSC_INTERN PetscErrorCode AdhSolverRegisterAll_Private(void);
+/* Gives the solver the type `type` of a kind (nothing if it has it): the previous type's destroy,
+   the kind's ops (whose first member is its AdhTypeOps) zeroed, the new type's create, and its
+   set-up if the solver's is done (fixed: the kind cannot change after set-up); current holds the
+   name (types.c). */
+PETSC_INTERN PetscErrorCode AdhSolverSetType_Private(AdhSolver, AdhRegistry *, char current[64], AdhTypeOps *ops, size_t size, const char type[], PetscBool fixed);
+/* The options of a type in its own -help group ("adhbem <what> <name> (-option name)"; types.c). */
+PETSC_INTERN PetscErrorCode AdhSolverTypeSetFromOptions_Private(AdhSolver, AdhRegistry *, const char type[], AdhTypeOps *);
 
 /* What a path does with its results: the results file (the curve, the fields) and the checkpoint.
-   Written by the results layer (src/results/), bound in solverregis.c, so that the solver calls it
+   Written by the results layer (src/results/), bound in impls/register.c, so that the solver calls it
    without depending on it. */
 typedef struct {
   PetscErrorCode (*check_writable)(AdhSolver, const char option[], const char file[]);
@@ -105,33 +159,21 @@ struct _p_AdhSolver {
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
   PetscInt  profile_version;  /* counts the profiles h has held (AdhSolverProfileChanged_Private) */
 
-  /* load control */
+  /* load control (impls/control/) */
   char          control_type[64];
   AdhControlOps cops;
-  PetscBool     force_control;  /* the path holds forces */
-  Vec           xunit;          /* force control: response of the set to a unit indentation, K_CC x = 1 */
-  Vec           gap_rate;       /* force control: how fast each gap closes as the set's indentation rises */
-  Mat           Kmean;          /* force control, periodic: K + c0 (1 1^T)/N, positive definite on every set */
-  PetscReal     c0;             /* its mean-mode compliance */
-  PetscReal     e;              /* force control: the indentation of K_op's equations, d + c0 mean(p) */
-  PetscReal     pulloff_rtol;   /* force control: resolution of the pull-off force */
-  AdhSavedState previous;       /* force control: the state before the current step */
+  Vec           set_response;   /* a control's vector on the contact set, kept zero off it (force control: the set's response to a unit indentation; NULL: none) */
+  Mat           Kcontrol;       /* the operator of the set's equations on the whole grid where the control replaces K (force control on a periodic cell: K + c0 (1 1^T)/N; NULL: K) */
+  PetscReal     Kcontrol_lambda; /* a lower bound on its eigenvalues beyond K's on the set */
   PetscBool     pulled_off;     /* the last step ended in pull-off */
 
   /* contact-set predictor (impls/predictor/) */
-  char      predictor_type[64];
-  PetscErrorCode (*predict)(AdhSolver, PetscBool force, PetscReal target); /* NULL: none */
-  PetscReal predictor_rtol;
-  PetscInt  predictor_max_it, predictor_its;
-  PetscBool predictor_fourier; /* precondition with the stiffness E*|q|/2 */
-  PetscBool predictor_chosen;  /* set by the user (else chosen by the boundary at set-up) */
-  /* detachment criterion */
+  char            predictor_type[64];
+  AdhPredictorOps pops;
+  PetscBool       predictor_chosen;  /* set by the user (else chosen by the boundary at set-up) */
+  /* detachment criterion (impls/criterion/) */
   char            criterion_type[64];
   AdhCriterionOps crops;
-  void           *crdata;
-  PetscReal       criterion_radius; /* crack-closure: averaging radius, in grid spacings, */
-  PetscReal       criterion_radius_max; /* and up to this where the front's radius of curvature is larger */
-  PetscBool       criterion_certify; /* crack-closure: its certified early stop (-adh_criterion_certify) */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
 
@@ -245,6 +287,11 @@ struct _p_AdhSolver {
 };
 
 PETSC_INTERN PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver);
+/* The path holds forces (the load control's target). */
+static inline PetscBool AdhSolverControlsForce_Private(AdhSolver s)
+{
+  return (PetscBool)(s->cops.target == ADH_TARGET_FORCE);
+}
 /* Tension is allowed somewhere: not the adhesion-free start, and a work of adhesion (or a fixed
    critical stress). Without it the state at a given d or F is unique, whatever the path. */
 static inline PetscBool AdhSolverIsAdhesive_Private(AdhSolver s)
@@ -312,18 +359,15 @@ PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool 
     if (stop_) PetscFunctionReturn(PETSC_ERR_SIG); \
   } while (0)
 PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
-/* the registries of the solver's types (interface/solverregis.c lists the built-in ones) */
+/* the package of the solver: registers the built-in types (impls/register.c) */
 PETSC_INTERN PetscErrorCode AdhSolverInitializePackage(void);
-PETSC_INTERN PetscErrorCode AdhCriterionDestroyList_Private(void);
-PETSC_INTERN PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *);
-/* the rows crack-closure looks at each side of a point: its averaging radius, and at least the radius of its estimate of the
-   edge's normal */
-#define ADH_NORMAL_RADIUS 3
-static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
-{
-  return PetscMax(ADH_NORMAL_RADIUS, (PetscInt)PetscCeilReal(radius));
-}
-PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscInt removed, PetscInt *);
+PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscReal e, PetscInt removed, PetscInt *);
+/* The set-update loop of a step at the target, from the current set: solve (the control's
+   equilibrate), let go, let join, until the set stands or no equilibrium is left (setupdate.c). */
+PETSC_INTERN PetscErrorCode AdhSolverUpdateSet_Private(AdhSolver, PetscReal target);
+/* The options of every registered type, read on a scratch solver: -help shows those of the types
+   the solver does not have, and set-up does not take any for misspellings (types.c). */
+PETSC_INTERN PetscErrorCode AdhSolverReadTypesOptions_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverAttachDecided_Private(AdhSolver, Vec xC, PetscReal rnorm, PetscBool *certain, PetscReal *needed);
 PETSC_INTERN PetscErrorCode AdhSolverComputeGap_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverGapFromDisplacement_Private(AdhSolver, Vec);
@@ -334,10 +378,6 @@ PETSC_INTERN PetscErrorCode AdhSolverMonitorProgress_Private(AdhSolver, PetscInt
 PETSC_INTERN PetscErrorCode AdhSolverProgress_Private(AdhSolver); /* -adh_progress's line after a recorded state (monitor.c) */
 PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal d, PetscBool strict);
 PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
-PETSC_INTERN PetscErrorCode AdhPredictorDestroyList_Private(void);
-PETSC_INTERN PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *);
-PETSC_INTERN PetscErrorCode AdhControlDestroyList_Private(void);
-PETSC_INTERN PetscErrorCode AdhControlGetList_Private(PetscFunctionList *);
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);

@@ -1,6 +1,8 @@
-/* adhbem's own options: their names, and the check that every -adh_ option given is one of them,
-   so that a misspelled option (-adh_gama 0.01) stops the run, naming the nearest option, instead
-   of running with the default. The options of the solver's KSPs and PC (-adh_ksp_*, -adh_pc_*, -adh_local_ksp_*)
+/* adhbem's own options: their names, and the check that every -adh_ option given is one of them
+   or one that a registered type read, so that a misspelled option (-adh_gama 0.01) stops the run,
+   naming the nearest option, instead of running with the default. The types' options are not
+   listed here: each type reads its own (the solver reads those of the types it does not have on
+   a scratch solver before the check, solver/interface/types.c). The options of the solver's KSPs and PC (-adh_ksp_*, -adh_pc_*, -adh_local_ksp_*)
    are PETSc's, which reads some only during solves: they are not checked. tests/sys/test_options.py
    keeps this list equal to what -help shows. */
 #include "sys/sysimpl.h"
@@ -10,13 +12,13 @@ static const char *const AdhOptionNames[] = {
   "adh_gamma_field_dataset", "adh_critical_stress", "adh_boundary", "adh_indenter", "adh_radius", "adh_punch_radius",
   "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
   "adh_rms_height", "adh_rms_slope", "adh_rolloff_wavelength", "adh_cutoff_wavelength", "adh_seed", "adh_control",
-  "adh_criterion", "adh_criterion_radius", "adh_criterion_radius_max", "adh_criterion_certify", "adh_path", "adh_steps", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart", "adh_cascade_local", "adh_cascade_local_rtol",
-  "adh_memory_check", "adh_box", "adh_max_outer", "adh_pulloff_rtol", "adh_predictor", "adh_predictor_rtol", "adh_predictor_max_it", "adh_predictor_fourier", "adh_monitor", "adh_monitor_interval", "adh_progress",
+  "adh_criterion", "adh_path", "adh_steps", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart", "adh_cascade_local", "adh_cascade_local_rtol",
+  "adh_memory_check", "adh_box", "adh_max_outer", "adh_predictor", "adh_monitor", "adh_monitor_interval", "adh_progress",
   "adh_fields", "adh_fields_stride", "adh_output", "adh_fftw_planner", "adh_fftw_timelimit", "adh_fftw_layout", "adh_view", "adh_traceback", "adh_checkpoint", "adh_checkpoint_every", "adh_restart",
 };
 
 /*@
-  AdhGetOptionNames - Gets the names of adhbem's own options
+  AdhGetOptionNames - Gets the names of the options adhbem's solver reads itself, without those of its types
 
   Not Collective
 
@@ -25,9 +27,11 @@ static const char *const AdhOptionNames[] = {
 - names - the names, without the leading '-' and the prefix (adh_gamma, ...); a static array, not to be freed
 
   Notes:
-  These are the options adhbem reads: `AdhSolverSetUp()` stops at any other option under the solver's prefix that starts with
-  adh_ (a misspelling), naming the nearest of these. The options of the solver's KSPs and preconditioners (-adh_ksp_*,
-  -adh_pc_*, -adh_local_ksp_*) are PETSc's and are not in the list.
+  `AdhSolverSetUp()` stops at any option under the solver's prefix that starts with adh_ and is neither one of these
+  nor one that a registered type (a criterion, a load control, a predictor) reads (a misspelling), naming the nearest
+  of these. Each type reads its own options (its manual page lists them; -help shows them in a group of the type's).
+  The options of the solver's KSPs and preconditioners (-adh_ksp_*, -adh_pc_*, -adh_local_ksp_*) are PETSc's and are
+  not in the list.
 
   Level: advanced
 
@@ -162,23 +166,5 @@ PetscErrorCode AdhCheckKSPOptions_Private(KSP ksp, const char prefix_or_null[], 
     PetscCall(PetscOptionsHasName(NULL, NULL, option, &guess));
     PetscCheck(!guess, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_INCOMP, "%s: PETSc's initial guesses (KSPGuess) need one operator size, and the contact set changes size at every set update; each solve starts from the pressures of the last one instead", option);
   }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhFunctionListNames_Private(PetscFunctionList list, char names[], size_t len)
-{
-  const char **array;
-  int          n, m = 0;
-
-  PetscFunctionBegin;
-  names[0] = 0;
-  PetscCall(PetscFunctionListGet(list, &array, &n));
-  for (int k = 0; k < n; k++) /* PetscFunctionListGet counts a closing NULL, for PetscOptionsEList */
-    if (array[k] && array[k][0]) array[m++] = array[k];
-  for (int k = 0; k < m; k++) {
-    PetscCall(PetscStrlcat(names, array[k], len));
-    if (k < m - 1) PetscCall(PetscStrlcat(names, k < m - 2 ? ", " : " or ", len));
-  }
-  PetscCall(PetscFree(array));
   PetscFunctionReturn(0);
 }

@@ -1,4 +1,5 @@
-/* The package's services to the layers above: the check of adhbem's options (options.c). */
+/* The package's services to the layers above: the check of adhbem's options (options.c) and the
+   registries of types (registry.c). */
 #ifndef ADHBEM_SYSIMPL_H
 #define ADHBEM_SYSIMPL_H
 #include <petscksp.h>
@@ -10,6 +11,18 @@ PETSC_INTERN PetscErrorCode AdhCheckOptions_Private(MPI_Comm, const char prefix[
 /* After ksp's set-up from the options: an -adh_ksp_ or -adh_pc_ option under prefix that neither
    it nor a solve reads is an error naming it. */
 PETSC_INTERN PetscErrorCode AdhCheckKSPOptions_Private(KSP, const char prefix[], const char which[]);
-/* The names registered in list, as "a, b or c", for a message about an unknown type. */
-PETSC_INTERN PetscErrorCode AdhFunctionListNames_Private(PetscFunctionList, char names[], size_t len);
+
+/* The types of one kind, by name (registry.c): option is the option that chooses one
+   ("-adh_criterion"), what says what they are ("detachment criterion"). */
+typedef struct {
+  const char       *option;
+  const char       *what;
+  PetscFunctionList list;
+} AdhRegistry;
+PETSC_INTERN PetscErrorCode AdhRegistryAdd_Private(AdhRegistry *, const char name[], PetscVoidFunction create);
+/* The create function of name; an unknown name is an error naming the option and the registered names. */
+PETSC_INTERN PetscErrorCode AdhRegistryFind_Private(MPI_Comm, AdhRegistry *, const char name[], PetscVoidFunction *create);
+/* The registered names, in registration order; free the array (not the names) with PetscFree(). */
+PETSC_INTERN PetscErrorCode AdhRegistryGetNames_Private(AdhRegistry *, PetscInt *n, const char ***names);
+PETSC_INTERN PetscErrorCode AdhRegistryDestroy_Private(AdhRegistry *);
 #endif

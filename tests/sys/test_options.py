@@ -1,4 +1,5 @@
-"""adhbem's own options: the list the checks use is the list -help shows; a misspelled -adh_
+"""adhbem's own options: the list the checks use is the list -help shows, besides the types' own
+options, which it shows in a group of each type's; a misspelled -adh_
 option stops the executable, naming the nearest option; a misspelled keyword of Solver() is a
 TypeError; PETSc's own options under the prefix (-adh_ksp_*) are PETSc's, and one that the
 solver's KSP does not read is refused at set-up. Other mistakes (a missing options file, PETSc's
@@ -23,10 +24,25 @@ def serial_only():
 
 
 def test_option_list_is_what_help_shows():
+    """The solver's own options are the list the checks use; each registered type's own options are
+    shown in a group of the type's, "adhbem <kind> <type> (-adh_<kind> <type>):", whichever type is
+    in use."""
     serial_only()
     r = subprocess.run([EXE, "-help", "-adh_path", "0.01,0", "-adh_steps", "1"], capture_output=True, text=True)
-    shown = {m for m in re.findall(r"^\s*-(adh_[A-Za-z0-9_]+)", r.stdout, re.M) if not m.startswith(("adh_ksp_", "adh_pc_", "adh_local_ksp_", "adh_local_pc_"))}
-    assert shown == set(_adhbem.option_names())
+    groups, title = {}, ""
+    for line in r.stdout.splitlines():
+        if line and not line.startswith(" ") and line.endswith(":"):
+            title = line[:-1]
+        for m in re.findall(r"^\s*-(adh_[A-Za-z0-9_]+)", line):
+            if not m.startswith(("adh_ksp_", "adh_pc_", "adh_local_ksp_", "adh_local_pc_")):
+                groups.setdefault(title, set()).add(m)
+    typed = {t: o for t, o in groups.items() if re.search(r"\(-adh_(criterion|control|predictor) [\w-]+\)$", t)}
+    assert set(typed) == {"adhbem detachment criterion crack-closure (-adh_criterion crack-closure)",
+                          "adhbem load control force (-adh_control force)",
+                          "adhbem contact-set predictor polonsky-keer (-adh_predictor polonsky-keer)"}
+    assert typed["adhbem load control force (-adh_control force)"] == {"adh_pulloff_rtol"}
+    own = set().union(*(o for t, o in groups.items() if t not in typed))
+    assert own == set(_adhbem.option_names())
 
 
 def test_misspelled_option_stops_the_executable(tmp_path):

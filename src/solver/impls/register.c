@@ -1,7 +1,7 @@
-/* The solver's registered types in one place: detachment criteria, load controls and contact-set
-   predictors. A new type is one file in impls/<kind>/ that fills in the kind's ops table
-   (solverimpl.h), and its prototype and registration here (docs/code-map.md). Here too the
-   results layer is bound to the path (AdhResultsOps): the one place the solver names it. */
+/* The solver's built-in types, registered in one place: detachment criteria, load controls and
+   contact-set predictors. A new type is a file (or a folder) in impls/<kind>/ whose create
+   function fills in the kind's ops (solverimpl.h), and its line here (docs/code-map.md). Here too
+   the results layer is bound to the path (AdhResultsOps): the one place the solver names it. */
 #include "results/resultsimpl.h"
 
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver);
@@ -17,10 +17,23 @@ static PetscBool AdhSolverPackageInitialized = PETSC_FALSE;
 static PetscErrorCode AdhSolverFinalizePackage(void)
 {
   PetscFunctionBegin;
-  PetscCall(AdhCriterionDestroyList_Private());
-  PetscCall(AdhControlDestroyList_Private());
-  PetscCall(AdhPredictorDestroyList_Private());
+  PetscCall(AdhRegistryDestroy_Private(&AdhCriteria));
+  PetscCall(AdhRegistryDestroy_Private(&AdhControls));
+  PetscCall(AdhRegistryDestroy_Private(&AdhPredictors));
   AdhSolverPackageInitialized = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The built-in types, in the order -help and the error messages list them. */
+PetscErrorCode AdhSolverRegisterAll_Private(void)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhCriterionRegister(ADHCRITERIONPOHRTPOPOV, AdhCriterionCreate_PohrtPopov));
+  PetscCall(AdhCriterionRegister(ADHCRITERIONCRACKCLOSURE, AdhCriterionCreate_CrackClosure));
+  PetscCall(AdhControlRegister(ADHCONTROLDISPLACEMENT, AdhControlCreate_Displacement));
+  PetscCall(AdhControlRegister(ADHCONTROLFORCE, AdhControlCreate_Force));
+  PetscCall(AdhPredictorRegister(ADHPREDICTORNONE, AdhPredictorCreate_None));
+  PetscCall(AdhPredictorRegister(ADHPREDICTORPOLONSKYKEER, AdhPredictorCreate_PolonskyKeer));
   PetscFunctionReturn(0);
 }
 
@@ -32,12 +45,7 @@ PetscErrorCode AdhSolverInitializePackage(void)
   if (AdhSolverPackageInitialized) PetscFunctionReturn(0);
   AdhSolverPackageInitialized = PETSC_TRUE;
   PetscCall(AdhInitializePackage());
-  PetscCall(AdhCriterionRegister(ADHCRITERIONPOHRTPOPOV, AdhCriterionCreate_PohrtPopov));
-  PetscCall(AdhCriterionRegister(ADHCRITERIONCRACKCLOSURE, AdhCriterionCreate_CrackClosure));
-  PetscCall(AdhControlRegister(ADHCONTROLDISPLACEMENT, AdhControlCreate_Displacement));
-  PetscCall(AdhControlRegister(ADHCONTROLFORCE, AdhControlCreate_Force));
-  PetscCall(AdhPredictorRegister(ADHPREDICTORNONE, AdhPredictorCreate_None));
-  PetscCall(AdhPredictorRegister(ADHPREDICTORPOLONSKYKEER, AdhPredictorCreate_PolonskyKeer));
+  PetscCall(AdhSolverRegisterAll_Private());
   AdhResults = (AdhResultsOps){.check_writable = AdhOutputCheckWritable_Private, .open = AdhOutputOpen_Private, .resume = AdhOutputResume_Private, .write_fields = AdhOutputWriteFields_Private, .append = AdhOutputAppend_Private, .close = AdhOutputClose_Private, .checkpoint_write = AdhCheckpointWrite_Private, .checkpoint_read = AdhCheckpointRead_Private};
   PetscCall(PetscRegisterFinalize(AdhSolverFinalizePackage));
   PetscFunctionReturn(0);

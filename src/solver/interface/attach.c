@@ -93,14 +93,14 @@ PetscErrorCode AdhSolverAttachDecided_Private(AdhSolver s, Vec xC, PetscReal rno
 
 /* u = K p, g = h - d + u; add every point off the set that penetrates, g < 0 (under reach,
    g < Sigma K_00). With rate (force control), the points join in the order in which they would
-   touch if the set's indentation e rose from where it was with the set fixed: a gap closes at
+   touch if the set's indentation e rose from where it is (e) with the set fixed: a gap closes at
    rate_k per unit e, so point k touches at e_k = e - (limit_k - g_k) / rate_k. At most as many
    join as a quarter of the set has points (the set grows by at most 25%), the first to touch; the next force
    balance, with them, decides about the others. Adding every point that penetrates at the e of a
    small, soft set would attach points that the load never reaches. With removed > 0
    (-adh_cascade_apart, in an update that let that many points go) the points marked in s->gone
    stay off, and the set's size after the update counts without the points let go. */
-PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt removed, PetscInt *added)
+PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscReal e, PetscInt removed, PetscInt *added)
 {
   const PetscScalar *ga, *ta, *ra = NULL, *la;
   PetscReal          tu;
@@ -120,11 +120,11 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt removed, 
   PetscCall(GetGriffithLimits(s, &la));
 #define LIMIT(k) (AttachLimit(s, reach, K00, ta, tu, la, k, &limit) ? limit : PETSC_MIN_REAL)
 #define CANDIDATE(k) (PetscRealPart(ga[k]) < LIMIT(k))
-#define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? s->e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
+#define TOUCH(k) (PetscRealPart(ra[k]) > 0 ? e - (LIMIT(k) - PetscRealPart(ga[k])) / PetscRealPart(ra[k]) : PETSC_MIN_REAL)
   if (rate) {
     /* the touching depth below which at most max(npoints/4, 1) candidates lie, by bisection */
     PetscInt  total = 0, allowed = PetscMax(s->npoints / 4, 1);
-    PetscReal lo = PETSC_MAX_REAL, hi = s->e;
+    PetscReal lo = PETSC_MAX_REAL, hi = e;
     for (k = 0; k < n; k++)
       if (CANDIDATE(k)) {
         lo = PetscMin(lo, TOUCH(k));
@@ -145,7 +145,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscInt removed, 
       }
       /* at least the first point to touch; points that touch together (symmetric profiles) join
          together, whatever the rounding, so the set does not depend on the number of ranks */
-      elimit = lo + 1e-8 * (s->e - efirst);
+      elimit = lo + 1e-8 * (e - efirst);
     }
   }
   for (k = 0; k < n; k++)

@@ -71,7 +71,7 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   PetscCall(ISGetSize(s->contact, &s->npoints));
 
   PetscCall(AdhSolverSelectOperator_Private(s));
-  Kop = s->box ? s->box->K : s->Kmean ? s->Kmean : s->K;
+  Kop = s->box ? s->box->K : s->Kcontrol ? s->Kcontrol : s->K;
   Sop = s->box ? s->box->S : s->S;
   if (Kop != s->Kop || Sop != s->Sop) {
     PetscBool kdirect = PETSC_FALSE, sdirect = PETSC_FALSE;
@@ -94,9 +94,9 @@ PetscErrorCode AdhSolverRebuildSet_Private(AdhSolver s)
   } else PetscCall(PetscFree(opidx));
 
   /* A lower bound on the eigenvalues of K_CC for the certified stop (zero: no certification). */
-  if (Kop == s->Kmean) {
+  if (Kop == s->Kcontrol) {
     PetscCall(MatAdhComplianceGetSetLambdaMin(s->K, 0, &s->lambda_set));
-    s->lambda_set = PetscMin(s->lambda_set, s->c0);
+    s->lambda_set = PetscMin(s->lambda_set, s->Kcontrol_lambda);
   } else PetscCall(MatAdhComplianceGetSetLambdaMin(s->K, s->npoints, &s->lambda_set));
 
   PetscCall(MatDestroy(&s->Kcc));
@@ -122,7 +122,7 @@ PetscErrorCode AdhSolverClearContact_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(PetscArrayzero(s->in_set, s->nlocal));
   PetscCall(VecSet(s->p, 0.0));
-  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+  if (s->set_response) PetscCall(VecSet(s->set_response, 0.0));
   s->pulled_off = PETSC_FALSE;
   PetscCall(AdhSolverRebuildSet_Private(s));
   PetscFunctionReturn(0);

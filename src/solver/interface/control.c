@@ -1,13 +1,14 @@
 /* Load control, a registered type (-adh_control): what the path's values are and how a step
-   reaches one. The types are in impls/control/, one file each, listed in solverregis.c; each
-   fills in AdhControlOps (solverimpl.h).
+   reaches one. The types are in impls/control/, one file each, registered in impls/register.c;
+   each fills in AdhControlOps (solverimpl.h) and owns its options, view and data. Their steps
+   share the set-update loop (setupdate.c).
 
    displacement: the path holds indentations d (impls/control/displacement.c).
    force:        the path holds forces F; a step finds the d at which the equilibrium set carries
                  exactly F (impls/control/force.c). */
 #include "solver/solverimpl.h"
 
-static PetscFunctionList AdhControlList = NULL;
+AdhRegistry AdhControls = {"-adh_control", "load control", NULL};
 
 /*@
   AdhControlRegister - Adds a load control type
@@ -16,8 +17,9 @@ static PetscFunctionList AdhControlList = NULL;
 
   Input Parameters:
 + name   - the type's name, as given to `AdhSolverSetControlType()` and -adh_control
-- create - the function that gives a solver this control: it fills in the solver's `AdhControlOps` (setup, step,
-           destroy; declared in the private header src/solver/solverimpl.h)
+- create - the function that gives a solver this control: it fills in the solver's `AdhControlOps` (its target, step and
+           equilibrate, optionally attach_rate, and the ops every type may have: setfromoptions, view, setup, destroy,
+           shape, checkpoint, memory; declared in the private header src/solver/solverimpl.h) and makes its data
 
   Calling sequence of `create`:
 . s - the solver, whose previous control has been destroyed
@@ -28,8 +30,8 @@ static PetscFunctionList AdhControlList = NULL;
   The built-in types, `ADHCONTROLDISPLACEMENT` and `ADHCONTROLFORCE`, are registered when the package is initialized,
   which this function does first. Registering a name again replaces its function.
 
-  A new type is one file in src/solver/impls/control/ and its registration in src/solver/interface/solverregis.c
-  (docs/code-map.md).
+  A new type is one file in src/solver/impls/control/ and its registration line in src/solver/impls/register.c
+  (docs/code-map.md); its step may run the set-update loop the built-in controls share.
 
 .seealso: `AdhSolverSetControlType()`, `AdhSolverGetControlType()`, `AdhCriterionRegister()`, `AdhPredictorRegister()`
 @*/
@@ -37,22 +39,7 @@ PetscErrorCode AdhControlRegister(const char name[], PetscErrorCode (*create)(Ad
 {
   PetscFunctionBegin;
   PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhControlList, name, create));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhControlDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhControlList));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhControlGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhSolverInitializePackage());
-  *list = AdhControlList;
+  PetscCall(AdhRegistryAdd_Private(&AdhControls, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
 }
 
@@ -84,25 +71,10 @@ PetscErrorCode AdhControlGetList_Private(PetscFunctionList *list)
 @*/
 PetscErrorCode AdhSolverSetControlType(AdhSolver s, AdhControlType type)
 {
-  PetscErrorCode (*create)(AdhSolver);
-  PetscBool same;
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
-  PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscStrcmp(s->control_type, type, &same));
-  if (same) PetscFunctionReturn(0);
-  PetscCall(PetscFunctionListFind(AdhControlList, type, &create));
-  if (!create) {
-    char names[256];
-    PetscCall(AdhFunctionListNames_Private(AdhControlList, names, sizeof(names)));
-    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_control: unknown load control '%s' (%s)", type, names);
-  }
-  PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_control: the load control cannot change after set-up");
-  if (s->cops.destroy) PetscCall(s->cops.destroy(s));
-  PetscCall(PetscMemzero(&s->cops, sizeof(s->cops)));
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->control_type, type, sizeof(s->control_type)));
+  PetscValidCharPointer(type, 2);
+  PetscCall(AdhSolverSetType_Private(s, &AdhControls, s->control_type, &s->cops.base, sizeof(s->cops), type, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -169,7 +141,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverSetUp(s));
-  PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", s->force_control ? "force" : "indentation");
+  PetscCheck(!PetscIsInfOrNanReal(target), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The step's target (%s) is not finite", AdhSolverControlsForce_Private(s) ? "force" : "indentation");
   PetscCall(PetscLogEventBegin(ADH_Solve, 0, 0, 0, 0));
   PetscCall(AdhSolverMultCount_Private(s, &mults0, &ffts0));
   s->step_outer = 0;

@@ -1,14 +1,14 @@
 /* Detachment criterion, a registered type (-adh_criterion): which points of the contact set let
-   go after a solve. The types are in impls/criterion/, one file each, listed in solverregis.c;
-   each fills in AdhCriterionOps (solverimpl.h). Both reduce to non-adhesive contact (p < 0 lets
-   go) when dgamma = 0.
+   go after a solve. The types are in impls/criterion/, a file or a folder each, registered in
+   impls/register.c; each fills in AdhCriterionOps (solverimpl.h) and owns its options, view and
+   data. Both reduce to non-adhesive contact (p < 0 lets go) when dgamma = 0.
 
    pohrt-popov:   the paper's rule, p < -Sigma (impls/criterion/pohrtpopov.c).
    crack-closure: the contact edge's energy release rate by virtual crack closure, averaged along
-                  the edge, against dgamma (impls/criterion/crackclosure.c). */
+                  the edge, against dgamma (impls/criterion/crackclosure/). */
 #include "solver/solverimpl.h"
 
-static PetscFunctionList AdhCriterionList = NULL;
+AdhRegistry AdhCriteria = {"-adh_criterion", "detachment criterion", NULL};
 
 /*@
   AdhCriterionRegister - Adds a detachment criterion type
@@ -17,8 +17,9 @@ static PetscFunctionList AdhCriterionList = NULL;
 
   Input Parameters:
 + name   - the type's name, as given to `AdhSolverSetCriterionType()` and -adh_criterion
-- create - the function that gives a solver this criterion: it fills in the solver's `AdhCriterionOps` (evaluate, and
-           optionally setup, destroy and decide; declared in the private header src/solver/solverimpl.h)
+- create - the function that gives a solver this criterion: it fills in the solver's `AdhCriterionOps` (evaluate;
+           optionally decide, and the ops every type may have: setfromoptions, view, setup, destroy, shape,
+           checkpoint, memory; declared in the private header src/solver/solverimpl.h) and makes its data
 
   Calling sequence of `create`:
 . s - the solver, whose previous criterion has been destroyed
@@ -29,8 +30,10 @@ static PetscFunctionList AdhCriterionList = NULL;
   The built-in types, `ADHCRITERIONCRACKCLOSURE` and `ADHCRITERIONPOHRTPOPOV`, are registered when the package is
   initialized, which this function does first. Registering a name again replaces its function.
 
-  A new type is one file in src/solver/impls/criterion/ and its registration in src/solver/interface/solverregis.c;
-  docs/code-map.md says what its evaluate does.
+  A new type is one file (or folder) in src/solver/impls/criterion/ and its registration line in
+  src/solver/impls/register.c, with no edit of the solver's interface; docs/code-map.md works one through. Its options
+  are read by its setfromoptions in a -help group of its own, its lines of `AdhSolverView()` and its attributes in the
+  results file come from its view.
 
 .seealso: `AdhSolverSetCriterionType()`, `AdhSolverGetCriterionType()`, `AdhControlRegister()`, `AdhPredictorRegister()`
 @*/
@@ -38,22 +41,7 @@ PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(
 {
   PetscFunctionBegin;
   PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhCriterionList, name, create));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhCriterionDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhCriterionList));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhSolverInitializePackage());
-  *list = AdhCriterionList;
+  PetscCall(AdhRegistryAdd_Private(&AdhCriteria, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
 }
 
@@ -85,25 +73,10 @@ PetscErrorCode AdhCriterionGetList_Private(PetscFunctionList *list)
 @*/
 PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
 {
-  PetscErrorCode (*create)(AdhSolver);
-  PetscBool same;
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
-  PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscStrcmp(s->criterion_type, type, &same));
-  if (same) PetscFunctionReturn(0);
-  PetscCall(PetscFunctionListFind(AdhCriterionList, type, &create));
-  if (!create) {
-    char names[256];
-    PetscCall(AdhFunctionListNames_Private(AdhCriterionList, names, sizeof(names)));
-    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_criterion: unknown detachment criterion '%s' (%s)", type, names);
-  }
-  PetscCheck(!s->setup, s->comm, PETSC_ERR_ORDER, "-adh_criterion: the detachment criterion cannot change after set-up");
-  if (s->crops.destroy) PetscCall(s->crops.destroy(s));
-  PetscCall(PetscMemzero(&s->crops, sizeof(s->crops)));
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->criterion_type, type, sizeof(s->criterion_type)));
+  PetscValidCharPointer(type, 2);
+  PetscCall(AdhSolverSetType_Private(s, &AdhCriteria, s->criterion_type, &s->crops.base, sizeof(s->crops), type, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 

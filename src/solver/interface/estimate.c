@@ -32,18 +32,23 @@ static const PetscLogDouble AdhRankBaseBytes = 50e6;
 
 /* Bytes per grid point of this run, and bytes each rank holds besides: the base, and
    crack-closure's rows beyond the rank's own (see above). */
-static void BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
+static PetscErrorCode BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
-  const AdhIndenterType t = s->indenter.type;
-  const PetscBool       faceless = (PetscBool)(t == ADH_INDENTER_PUNCH); /* a file's or an array's profile is finite */
-  PetscBool             cc, griffith;
+  AdhTypeOps *types[3] = {&s->crops.base, &s->cops.base, &s->pops.base};
 
-  PetscCallAbort(PETSC_COMM_SELF, PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-  griffith = (PetscBool)(cc && s->attach == ADH_ATTACH_GRIFFITH);
-  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (cc ? 9.0 + (faceless ? 8.0 : 0.0) + sizeof(PetscInt) : 0.0) + (cc && s->criterion_certify && s->certify ? sizeof(PetscInt) : 0.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && (s->cascade_rtol > 0 || s->cascade_local > 0) ? 4.0 : 0.0);
-  *per_rank  = AdhRankBaseBytes + (cc ? ((griffith ? 4 : 3) * 8.0 + 1.0 + sizeof(PetscInt)) * 2 * AdhCrackClosureWidth(PetscMax(s->criterion_radius, s->criterion_radius_max)) * s->grid->Nx : 0.0);
+  PetscFunctionBegin;
+  *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && (s->cascade_rtol > 0 || s->cascade_local > 0) ? 4.0 : 0.0);
+  *per_rank  = AdhRankBaseBytes;
   /* the marks' band beyond a rank's own rows and the other ranks' rows in it: 4 D rows of bytes */
   *per_rank += 4.0 * PetscMin(PetscMax(s->cascade_apart, s->local_whole ? 0 : s->local_W), s->grid->Ny) * s->grid->Nx;
+  for (PetscInt k = 0; k < 3; k++) /* what the types add: crack-closure's (impls/criterion/crackclosure/crackclosure.c) */
+    if (types[k]->memory) {
+      PetscLogDouble point = 0.0, rank = 0.0;
+      PetscCall(types[k]->memory(s, &point, &rank));
+      *per_point += point;
+      *per_rank += rank;
+    }
+  PetscFunctionReturn(0);
 }
 
 /*@
@@ -88,7 +93,7 @@ PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, Petsc
   PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
   PetscCallMPI(MPI_Comm_size(shared, &node_size));
   PetscCallMPI(MPI_Comm_free(&shared));
-  BytesOfRun(s, &per_point, &per_rank);
+  PetscCall(BytesOfRun(s, &per_point, &per_rank));
   if (total) *total = points * per_point + size * per_rank;
   if (node) *node = (points * per_point / size + per_rank) * node_size;
   PetscFunctionReturn(0);
@@ -122,7 +127,7 @@ static PetscErrorCode CheckMemory(AdhSolver s)
   if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
   physical = (PetscLogDouble)pages * (PetscLogDouble)page;
   PetscCall(AdhSolverEstimateMemory(s, NULL, &node));
-  BytesOfRun(s, &per_point, &per_rank);
+  PetscCall(BytesOfRun(s, &per_point, &per_rank));
   PetscCheck(node <= physical, s->comm, PETSC_ERR_MEM, "-adh_n: %" PetscInt_FMT " x %" PetscInt_FMT " needs about %.3g GB on this node (about %.0f bytes per grid point, %.0f MB per rank), which has %.3g GB of memory: spread the run over more nodes or use a smaller grid (-adh_memory_check 0 skips this check)", g->Nx, g->Ny, node / 1e9, (double)per_point, (double)per_rank / 1e6, physical / 1e9);
   PetscFunctionReturn(0);
 }

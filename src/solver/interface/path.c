@@ -16,7 +16,7 @@ PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBo
   for (k = 0; k < n; k++) s->in_set[k] = strict ? PetscRealPart(ha[k]) - d < 0 : PetscRealPart(ha[k]) - d <= 0;
   PetscCall(VecRestoreArrayRead(s->h, &ha));
   PetscCall(VecSet(s->p, 0.0));
-  if (s->xunit) PetscCall(VecSet(s->xunit, 0.0));
+  if (s->set_response) PetscCall(VecSet(s->set_response, 0.0));
   s->pulled_off = PETSC_FALSE;
   PetscCall(AdhSolverRebuildSet_Private(s));
   PetscFunctionReturn(0);
@@ -28,8 +28,8 @@ PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver s, PetscReal d, PetscBo
 static PetscErrorCode CheckStartTarget(AdhSolver s, PetscReal target)
 {
   PetscFunctionBegin;
-  PetscCheck(s->start != ADH_START_HERTZ || !s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
-  PetscCheck(!s->force_control || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, a tension the start cannot reach: -adh_start adhesive loads from first touch, where the contact carries none; start from a compressive force (or 0) and pull in a later leg (-adh_path 0.01,%g)", (double)target, (double)target);
+  PetscCheck(s->start != ADH_START_HERTZ || !AdhSolverControlsForce_Private(s) || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, but the adhesion-free start (-adh_start hertz) carries no tension; start from a compressive force or use -adh_start adhesive", (double)target);
+  PetscCheck(!AdhSolverControlsForce_Private(s) || target >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: the first force is %g, a tension the start cannot reach: -adh_start adhesive loads from first touch, where the contact carries none; start from a compressive force (or 0) and pull in a later leg (-adh_path 0.01,%g)", (double)target, (double)target);
   PetscFunctionReturn(0);
 }
 
@@ -75,7 +75,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
     /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap, or under force control
        from the first touch. */
     PetscCall(CheckStartTarget(s, target));
-    PetscCall(AdhSolverSetFromOverlap_Private(s, s->force_control ? dtouch : target, (PetscBool)!s->force_control));
+    PetscCall(AdhSolverSetFromOverlap_Private(s, AdhSolverControlsForce_Private(s) ? dtouch : target, (PetscBool)!AdhSolverControlsForce_Private(s)));
     s->d        = dtouch;
     s->adhesive = PETSC_FALSE;
     PetscCall(AdhSolverStep(s, target));
@@ -83,10 +83,10 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
   } else {
     /* Load with adhesion from first touch, where the apex points carry no load, to the target in
        -adh_steps steps. */
-    const PetscReal t0 = s->force_control ? 0.0 : dtouch;
-    PetscCall(AdhSolverSetFromOverlap_Private(s, PetscMin(dtouch, s->force_control ? dtouch : target), PETSC_FALSE));
+    const PetscReal t0 = AdhSolverControlsForce_Private(s) ? 0.0 : dtouch;
+    PetscCall(AdhSolverSetFromOverlap_Private(s, PetscMin(dtouch, AdhSolverControlsForce_Private(s) ? dtouch : target), PETSC_FALSE));
     s->d = dtouch;
-    if (s->force_control || target > dtouch) {
+    if (AdhSolverControlsForce_Private(s) || target > dtouch) {
       for (PetscInt k = 1; k <= s->steps; k++) {
         PetscCall(AdhSolverStep(s, t0 + (target - t0) * k / s->steps));
         outer += s->step_outer; ksp += s->step_ksp; mults += s->step_mults; ffts += s->step_ffts;
@@ -361,7 +361,7 @@ static PetscErrorCode CheckPath(AdhSolver s)
 {
   PetscFunctionBegin;
   PetscCall(CheckStartTarget(s, s->path[0]));
-  if (s->boundary == ADH_BOUNDARY_PERIODIC && !s->force_control)
+  if (s->boundary == ADH_BOUNDARY_PERIODIC && !AdhSolverControlsForce_Private(s))
     for (PetscInt k = 0; k < s->npath; k++) PetscCall(AdhSolverCheckBelowFullContact_Private(s, s->path[k]));
   PetscFunctionReturn(0);
 }

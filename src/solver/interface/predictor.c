@@ -1,5 +1,5 @@
-/* Contact-set predictor, a registered type (-adh_predictor; impls/predictor/, listed in
-   solverregis.c): a fast first guess of the contact set
+/* Contact-set predictor, a registered type (-adh_predictor; impls/predictor/, registered in
+   impls/register.c, each owning its options, view and data): a fast first guess of the contact set
    and pressure of a step without adhesion, at a force or an indentation (the load controls),
    handed to the set-update loop, which then certifies it as it certifies any set. The answer is
    the loop's: without adhesion the contact problem (p >= 0 on the set, g >= 0 off it, at d or
@@ -10,7 +10,7 @@
    polonsky-keer: Polonsky & Keer's conjugate gradient (impls/predictor/polonskykeer.c). */
 #include "solver/solverimpl.h"
 
-static PetscFunctionList AdhPredictorList = NULL;
+AdhRegistry AdhPredictors = {"-adh_predictor", "contact-set predictor", NULL};
 
 /*@
   AdhPredictorRegister - Adds a contact-set predictor type
@@ -19,18 +19,18 @@ static PetscFunctionList AdhPredictorList = NULL;
 
   Input Parameters:
 + name   - the type's name, as given to `AdhSolverSetPredictorType()` and -adh_predictor
-- create - the function that gives a solver this predictor: it sets the solver's predict function (`NULL`: none;
-           see the private header src/solver/solverimpl.h)
+- create - the function that gives a solver this predictor: it fills in the solver's `AdhPredictorOps` (predict,
+           `NULL` for none, and the ops every type may have; see the private header src/solver/solverimpl.h) and makes
+           its data
 
   Calling sequence of `create`:
-. s - the solver
+. s - the solver, whose previous predictor has been destroyed
 
   Level: advanced
 
   Notes:
   The built-in types, `ADHPREDICTORPOLONSKYKEER` and `ADHPREDICTORNONE`, are registered when the package is
-  initialized, which this function does first. Registering a name again replaces its function. A predictor keeps no
-  data of its own: the previous one is not destroyed.
+  initialized, which this function does first. Registering a name again replaces its function.
 
 .seealso: `AdhSolverSetPredictorType()`, `AdhSolverGetPredictorType()`, `AdhControlRegister()`, `AdhCriterionRegister()`
 @*/
@@ -38,22 +38,7 @@ PetscErrorCode AdhPredictorRegister(const char name[], PetscErrorCode (*create)(
 {
   PetscFunctionBegin;
   PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscFunctionListAdd(&AdhPredictorList, name, create));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhPredictorDestroyList_Private(void)
-{
-  PetscFunctionBegin;
-  PetscCall(PetscFunctionListDestroy(&AdhPredictorList));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *list)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhSolverInitializePackage());
-  *list = AdhPredictorList;
+  PetscCall(AdhRegistryAdd_Private(&AdhPredictors, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
 }
 
@@ -88,19 +73,10 @@ PetscErrorCode AdhPredictorGetList_Private(PetscFunctionList *list)
 @*/
 PetscErrorCode AdhSolverSetPredictorType(AdhSolver s, AdhPredictorType type)
 {
-  PetscErrorCode (*create)(AdhSolver);
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
-  PetscCall(AdhSolverInitializePackage());
-  PetscCall(PetscFunctionListFind(AdhPredictorList, type, &create));
-  if (!create) {
-    char names[256];
-    PetscCall(AdhFunctionListNames_Private(AdhPredictorList, names, sizeof(names)));
-    SETERRQ(s->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-adh_predictor: unknown contact-set predictor '%s' (%s)", type, names);
-  }
-  PetscCall(create(s));
-  PetscCall(PetscStrncpy(s->predictor_type, type, sizeof(s->predictor_type)));
+  PetscValidCharPointer(type, 2);
+  PetscCall(AdhSolverSetType_Private(s, &AdhPredictors, s->predictor_type, &s->pops.base, sizeof(s->pops), type, PETSC_FALSE));
   s->predictor_chosen = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

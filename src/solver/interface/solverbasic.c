@@ -58,10 +58,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;
-  s->pulloff_rtol     = 1e-3;
   s->cascade_local_rtol = 1e-3;
-  s->criterion_radius = 16.0;
-  s->criterion_radius_max = 64.0;
   s->fields_stride    = 1;
   s->memory_check     = PETSC_TRUE;
   s->checkpoint_every = 1;
@@ -76,9 +73,6 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
   PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONCRACKCLOSURE)); /* within 2% in every edge direction; the paper's rule is one option away */
   s->attach = ADH_ATTACH_GRIFFITH; /* crack-closure's mirror: JKR's and Johnson's loading branches (reach with pohrt-popov, at set-up; penetration stays Hertz-like) */
-  s->predictor_rtol   = 1e-8;
-  s->predictor_max_it = 10000;
-  s->predictor_fourier = PETSC_TRUE;
   PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORPOLONSKYKEER));
   s->predictor_chosen = PETSC_FALSE; /* the default: polonsky-keer on a periodic cell, none on a free boundary */
   *solver = s;
@@ -410,8 +404,9 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
     *solver = NULL;
     PetscFunctionReturn(0);
   }
-  if (s->cops.destroy) PetscCall(s->cops.destroy(s));
-  if (s->crops.destroy) PetscCall(s->crops.destroy(s));
+  if (s->cops.base.destroy) PetscCall(s->cops.base.destroy(s));
+  if (s->crops.base.destroy) PetscCall(s->crops.base.destroy(s));
+  if (s->pops.base.destroy) PetscCall(s->pops.base.destroy(s));
   PetscCall(PetscFree(s->field_states));
   if (s->journal) fclose(s->journal);
   PetscCall(VecDestroy(&s->attach_limit));

@@ -51,8 +51,6 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
 . -adh_gamma <dgamma>                                - the work of adhesion (0: non-adhesive)
 . -adh_gamma_field <FILE>                            - a work of adhesion field dgamma(x,y), .npy or HDF5, read at set-up
 . -adh_criterion <crack-closure,pohrt-popov>         - the detachment criterion, `AdhSolverSetCriterionType()`
-. -adh_criterion_radius <16>                         - crack-closure's averaging radius in grid spacings, in [1, 64]
-. -adh_criterion_radius_max <64>                     - its largest radius near the detachment, at most 128
 . -adh_critical_stress <0>                           - a fixed critical stress replacing Sigma (0: Sigma)
 . -adh_boundary <free,periodic>                      - an isolated contact or a periodic cell
 . -adh_control <displacement,force>                  - the load control, `AdhSolverSetControlType()`
@@ -61,7 +59,6 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
 . -adh_start <hertz,adhesive>                        - the starting state, `AdhSolverStart()`
 . -adh_attach <griffith,reach,penetration>           - when a point joins the set
 . -adh_predictor <polonsky-keer,none>                - the contact-set predictor, `AdhSolverSetPredictorType()`
-. -adh_pulloff_rtol <1e-3>                           - force control: the relative resolution of the pull-off force
 . -adh_output <FILE>                                 - the results file FILE.h5, and FILE.csv
 . -adh_fields [LIST]                                 - the fields written: pressure, displacement, gap, contact (alone: all)
 . -adh_monitor                                       - one line per state, `AdhSolverMonitorDefault()`
@@ -80,11 +77,17 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
   -adh_box, -adh_max_outer, -adh_memory_check). docs/options.md lists them by task.
 
   Values out of range are errors naming the option: -adh_gamma below 0 or not finite, -adh_critical_stress below 0,
-  -adh_criterion_radius outside [1, 64], -adh_criterion_radius_max above 128 or below -adh_criterion_radius,
   -adh_cascade_rtol outside [0, 1), -adh_cascade_apart outside [0, 64], -adh_cascade_local below 0 or NaN,
-  -adh_cascade_local_rtol and -adh_pulloff_rtol outside (0, 1), -adh_steps, -adh_checkpoint_every and
-  -adh_fields_stride below 1, -adh_progress below 0 or NaN, a point of -adh_path that is not finite; and
-  -adh_cascade_apart or -adh_cascade_local under force control. -adh_path takes at most 256 points.
+  -adh_cascade_local_rtol outside (0, 1), -adh_steps, -adh_checkpoint_every and -adh_fields_stride below 1,
+  -adh_progress below 0 or NaN, a point of -adh_path that is not finite; and -adh_cascade_apart or -adh_cascade_local
+  under a control whose steps do not re-solve at a fixed target (force control). -adh_path takes at most 256 points.
+
+  The types' own options are read by the type in use, in a -help group of its own, and checked there: crack-closure's
+  -adh_criterion_radius and -adh_criterion_radius_max (`ADHCRITERIONCRACKCLOSURE`), force control's -adh_pulloff_rtol
+  (`ADHCONTROLFORCE`), polonsky-keer's -adh_predictor_rtol, -adh_predictor_max_it and -adh_predictor_fourier
+  (`ADHPREDICTORPOLONSKYKEER`). With -help the options of every registered type are listed; those of the types not in
+  use are read (and checked) on a scratch solver, so that set-up does not take them for misspellings. Set a type
+  before this call: a type set afterwards keeps its defaults.
 
   -adh_monitor sets `AdhSolverMonitorDefault()` once. The KSP of the contact-set solves reads its options
   (-adh_ksp_rtol, ...) at set-up, and here again once it exists. A misspelled -adh_ option is refused at set-up.
@@ -101,8 +104,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscReal         path[256];
   PetscBool         set, certify = s->certify;
   char              control[64], criterion[64], predictor[64];
-  PetscFunctionList controls, criteria, predictors;
-  PetscBool         monitor_set;
+  PetscBool         monitor_set, help;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
@@ -114,19 +116,14 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
-  PetscCall(AdhCriterionGetList_Private(&criteria));
-  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", criteria, s->criterion_type, criterion, sizeof(criterion), &set));
+  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", AdhCriteria.list, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
-  PetscCall(PetscOptionsBool("-adh_criterion_certify", "crack-closure: the certified early stop of intermediate solves too (its openings bounded through K's row norms): the same sets with 12-16% fewer FFT pairs and about the default's time (it keeps each set's walks along the front, about 1 kB a front point)", "AdhSolver", s->criterion_certify, &s->criterion_certify, NULL));
-  PetscCall(PetscOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there), or more near the detachment (-adh_criterion_radius_max)", "AdhSolver", s->criterion_radius, &s->criterion_radius, NULL));
-  PetscCall(PetscOptionsReal("-adh_criterion_radius_max", "crack-closure: near the detachment, average within the edge's radius of curvature where that is larger, up to this many grid spacings (so that curved edges converge with the grid; equal to -adh_criterion_radius: a fixed window)", "AdhSolver", s->criterion_radius_max, &s->criterion_radius_max, NULL));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");
   PetscCall(PetscOptionsEnum("-adh_boundary", "Boundary: free (isolated contact) or periodic", "AdhSolver", AdhBoundaries, (PetscEnum)s->boundary, (PetscEnum *)&s->boundary, &set));
   if (set) s->boundary_set = PETSC_TRUE;
-  PetscCall(AdhControlGetList_Private(&controls));
-  PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", controls, s->control_type, control, sizeof(control), &set));
+  PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", AdhControls.list, s->control_type, control, sizeof(control), &set));
   if (set) PetscCall(AdhSolverSetControlType(s, control));
   PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force)", "AdhSolver", path, &n, &set));
   if (set) {
@@ -140,14 +137,15 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror; the default with crack-closure), reach (its gap is below Sigma K_00, the gap it closes under its own critical tension; the default with pohrt-popov) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, &set));
   if (set) s->attach_chosen = PETSC_TRUE;
-  PetscCall(AdhPredictorGetList_Private(&predictors));
-  PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", predictors, s->predictor_type, predictor, sizeof(predictor), &set));
+  PetscCall(PetscOptionsFList("-adh_predictor", "Without adhesion: guess each step's contact set with Polonsky-Keer's conjugate gradient (polonsky-keer, the default on a periodic cell) before the set-update loop certifies it, or not (none, the default on a free boundary); the answer is the same", "AdhSolverSetPredictorType", AdhPredictors.list, s->predictor_type, predictor, sizeof(predictor), &set));
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
-  PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "AdhSolver", s->predictor_rtol, &s->predictor_rtol, NULL));
-  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "AdhSolver", s->predictor_fourier, &s->predictor_fourier, NULL));
-  PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "AdhSolver", s->predictor_max_it, &s->predictor_max_it, NULL));
-  PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "AdhSolver", s->pulloff_rtol, &s->pulloff_rtol, NULL));
   PetscOptionsEnd();
+  /* the types' own options, each in a group of its own (and under -help those of the types not chosen) */
+  PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhCriteria, s->criterion_type, &s->crops.base));
+  PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhControls, s->control_type, &s->cops.base));
+  PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhPredictors, s->predictor_type, &s->pops.base));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) PetscCall(AdhSolverReadTypesOptions_Private(s));
   PetscOptionsBegin(s->comm, s->prefix, "adhbem output, monitoring and long runs", "AdhSolver");
   PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
   PetscCall(ParseFields(s));
@@ -177,20 +175,16 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (s->monitor && !monitor_set) PetscCall(AdhSolverMonitorSet(s, AdhSolverMonitorDefault, NULL, NULL));
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0, got %g", (double)s->sigma_fixed);
-  PetscCheck(s->criterion_radius >= 1 && s->criterion_radius <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)s->criterion_radius);
-  PetscCheck(s->criterion_radius_max <= 128, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max must be at most 128 grid spacings, got %g", (double)s->criterion_radius_max);
-  PetscCheck(s->criterion_radius_max >= s->criterion_radius, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius_max (%g) must be at least -adh_criterion_radius (%g)", (double)s->criterion_radius_max, (double)s->criterion_radius);
   PetscCheck(s->cascade_rtol >= 0 && s->cascade_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_rtol must lie in [0, 1), got %g", (double)s->cascade_rtol);
   PetscCheck(s->cascade_apart >= 0 && s->cascade_apart <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_apart must lie in [0, 64] grid spacings, got %" PetscInt_FMT, s->cascade_apart);
-  PetscCheck(!(s->cascade_apart > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart: displacement control only (-adh_control displacement)");
+  PetscCheck(!(s->cascade_apart > 0 && !s->cops.cascades), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart: displacement control only (-adh_control displacement)");
   PetscCheck(s->cascade_local >= 0 && !PetscIsNanReal(s->cascade_local), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local must be >= 0 (times the JKR contact radius; inf: the whole grid), got %g", (double)s->cascade_local);
   PetscCheck(s->cascade_local_rtol > 0 && s->cascade_local_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_local_rtol must lie in (0, 1), got %g", (double)s->cascade_local_rtol);
-  PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
+  PetscCheck(!(s->cascade_local > 0 && !s->cops.cascades), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
   PetscCheck(s->checkpoint_every >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_checkpoint_every must be >= 1, got %" PetscInt_FMT, s->checkpoint_every);
   PetscCheck(s->fields_stride >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_fields_stride must be >= 1, got %" PetscInt_FMT, s->fields_stride);
   PetscCheck(s->progress >= 0 && !PetscIsNanReal(s->progress), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)s->progress);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
-  PetscCheck(s->pulloff_rtol > 0 && s->pulloff_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)s->pulloff_rtol);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
   if (s->ksp) PetscCall(KSPSetFromOptions(s->ksp));
   PetscFunctionReturn(0);

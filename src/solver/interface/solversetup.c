@@ -207,18 +207,15 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!s->setup) {
+    PetscCall(AdhSolverReadTypesOptions_Private(s)); /* the types' options are not misspellings */
     PetscCall(AdhCheckOptions_Private(s->comm, s->prefix));
     /* A periodic cell does every multiply on the whole grid: plan it without a time limit (a
        limited plan transforms 2x slower at 512^2). */
     if (s->boundary == ADH_BOUNDARY_PERIODIC) s->grid->fftw_timelimit = -1.0;
     /* The predictor transforms the whole grid; on a free boundary the loop's bounding-box
        windows cost less (Hertz 256^2: 0.5 s against 3.1 s), so it is used there only if asked. */
-    {
-      PetscBool cc;
-      PetscCall(PetscStrcmp(s->criterion_type, ADHCRITERIONCRACKCLOSURE, &cc));
-      if (!cc && !s->attach_chosen) s->attach = ADH_ATTACH_REACH; /* griffith's counterpart for the paper's criterion */
-      PetscCheck(cc || s->attach != ADH_ATTACH_GRIFFITH, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach griffith is the mirror of -adh_criterion crack-closure's detachment test; with -adh_criterion %s use -adh_attach reach or penetration", s->criterion_type);
-    }
+    if (!s->crops.griffith && !s->attach_chosen) s->attach = ADH_ATTACH_REACH; /* griffith's counterpart for a criterion without griffith's limits */
+    PetscCheck(s->crops.griffith || s->attach != ADH_ATTACH_GRIFFITH, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach griffith is the mirror of -adh_criterion crack-closure's detachment test; with -adh_criterion %s use -adh_attach reach or penetration", s->criterion_type);
     if (!s->predictor_chosen && s->boundary == ADH_BOUNDARY_FREE) {
       PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORNONE));
       s->predictor_chosen = PETSC_FALSE;
@@ -242,7 +239,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     s->nlocal = nlocal;
     if (s->cascade_apart > 0) PetscCall(AdhSolverSetUpCascadeApart_Private(s));
     PetscCall(AdhSolverDefaultCascadeLocal_Private(s)); /* the criterion or the control may have changed since the options were read */
-    PetscCheck(!(s->cascade_local > 0 && s->force_control), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
+    PetscCheck(!(s->cascade_local > 0 && !s->cops.cascades), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local: displacement control only (-adh_control displacement)");
     if (s->cascade_local > 0) PetscCall(AdhSolverSetUpCascadeLocal_Private(s));
     PetscCall(AdhSolverProfileChanged_Private(s));
 
@@ -262,8 +259,9 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(KSPSetFromOptions(s->ksp));
     PetscCall(AdhCheckKSPOptions_Private(s->ksp, s->prefix, "adh_"));
     PetscCall(WarnFreeTopography(s));
-    if (s->cops.setup) PetscCall(s->cops.setup(s));
-    if (s->crops.setup) PetscCall(s->crops.setup(s));
+    if (s->cops.base.setup) PetscCall(s->cops.base.setup(s));
+    if (s->crops.base.setup) PetscCall(s->crops.base.setup(s));
+    if (s->pops.base.setup) PetscCall(s->pops.base.setup(s));
     s->setup = PETSC_TRUE;
     PetscCall(PetscInfo(s, "set up: %" PetscInt_FMT " x %" PetscInt_FMT " grid, %s boundary, criterion %s, control %s, predictor %s, Sigma %g\n", s->grid->Nx, s->grid->Ny, AdhBoundaries[s->boundary], s->criterion_type, s->control_type, s->predictor_type, (double)s->Sigma));
   }

@@ -1,6 +1,17 @@
 /* AdhSolverView: the solver's set-up, in words. */
 #include "solver/solverimpl.h"
 
+/* A type's own lines, indented under its kind's. */
+static PetscErrorCode ViewType(PetscViewer viewer, AdhTypeOps *ops, AdhSolver s)
+{
+  PetscFunctionBegin;
+  if (!ops->view) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(ops->view(s, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}
+
 /*@
   AdhSolverView - Prints the solver's set-up in words
 
@@ -15,9 +26,10 @@
   Notes:
   Prints the boundary, the grid, E*, dgamma and Sigma, the indenter (with a rough surface's statistics), the start,
   the number of path points and the steps per leg, the load control with the lower bound on the eigenvalues of K on
-  the current set and whether the certified early stop is on, the predictor, the cascade options in use, the
-  detachment criterion with its averaging radii and the attach rule, under force control the resolution of the
-  pull-off force, the estimated JKR contact radius of the smallest asperities, the memory estimate of
+  the current set, the predictor, the cascade options in use, the detachment criterion and the attach rule, each type
+  followed by its own lines (`ADHCONTROLDISPLACEMENT`: whether the certified early stop is on; `ADHCONTROLFORCE`: the
+  resolution of the pull-off force; `ADHCRITERIONCRACKCLOSURE`: its averaging radii; `ADHPREDICTORPOLONSKYKEER`: its
+  tolerances and iterations), the estimated JKR contact radius of the smallest asperities, the memory estimate of
   `AdhSolverEstimateMemory()`, and after set-up the KSP. A viewer of another type prints nothing.
 
   The adhbem executable calls it after set-up when given -adh_view.
@@ -41,16 +53,16 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g, certified early stop %s\n", s->control_type, (double)s->lambda_set, s->certify && s->crops.decide && !s->force_control ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s control; lambda_min bound on the current set %g\n", s->control_type, (double)s->lambda_set));
+  PetscCall(ViewType(viewer, &s->cops.base, s));
   PetscCall(PetscViewerASCIIPrintf(viewer, "contact-set predictor without adhesion: %s\n", s->predictor_type));
+  PetscCall(ViewType(viewer, &s->pops.base, s));
   if (s->cascade_apart > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "points join in set updates that let others go, %" PetscInt_FMT " grid spacings from them\n", s->cascade_apart));
   if (s->cascade_local > 0 && s->local_whole) PetscCall(PetscViewerASCIIPrintf(viewer, "after a set update lets points go, the set solved again to a relative residual %g of what they leave (-adh_cascade_local %g: the whole grid)%s, until such a solve lets nothing go\n", (double)s->cascade_local_rtol, (double)s->cascade_local, single));
   else if (s->cascade_local > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "local solves within %" PetscInt_FMT " grid spacings (%g JKR radii) of the points a set update lets go, to a relative residual %g%s\n", s->local_W, (double)s->cascade_local, (double)s->cascade_local_rtol, single));
   if (s->cascade_rtol > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "solves between set updates to a relative residual %g%s, the last of a step to the KSP's\n", (double)s->cascade_rtol, s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : ""));
-  if (s->crops.setup && s->criterion_radius_max > s->criterion_radius) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings (near the detachment within the edge's radius of curvature, up to %g); attach rule %s\n", s->criterion_type, (double)s->criterion_radius, (double)s->criterion_radius_max, AdhAttaches[s->attach]));
-  else if (s->crops.setup) PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s, averaged within %g grid spacings; attach rule %s\n", s->criterion_type, (double)s->criterion_radius, AdhAttaches[s->attach]));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));
-  if (s->force_control) PetscCall(PetscViewerASCIIPrintf(viewer, "pull-off force resolved to a relative %g\n", (double)s->pulloff_rtol));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "detachment criterion %s; attach rule %s\n", s->criterion_type, AdhAttaches[s->attach]));
+  PetscCall(ViewType(viewer, &s->crops.base, s));
   if (s->asperity_ac > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "JKR contact radius of the smallest asperities (estimate) over the grid spacing: %g\n", (double)s->asperity_ac));
   {
     PetscLogDouble total, node;

@@ -34,7 +34,7 @@ static PetscErrorCode Evaluate_PohrtPopov(AdhSolver s, PetscBool detach, PetscIn
 
   PetscFunctionBegin;
   PetscCall(VecGetArray(s->p, &pa));
-  if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
+  if (detach && s->set_response) PetscCall(VecGetArray(s->set_response, &xa));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
   for (k = 0; k < s->nlocal; k++) {
     const PetscReal p = PetscRealPart(pa[k]), Sigma = ADH_SIGMA_AT(ta, tu, k);
@@ -45,7 +45,7 @@ static PetscErrorCode Evaluate_PohrtPopov(AdhSolver s, PetscBool detach, PetscIn
     } else if (p < 0 && Sigma > 0) r = PetscMax(r, -p / Sigma);
   }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
-  if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
+  if (xa) PetscCall(VecRestoreArray(s->set_response, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   if (removed) PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
   if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));

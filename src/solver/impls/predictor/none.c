@@ -17,6 +17,6 @@ M*/
 PETSC_INTERN PetscErrorCode AdhPredictorCreate_None(AdhSolver s)
 {
   PetscFunctionBegin;
-  s->predict = NULL;
+  s->pops.predict = NULL; /* the set-update loop starts from the previous state's set */
   PetscFunctionReturn(0);
 }

@@ -31,6 +31,13 @@ M*/
    pressure's 1-norm, and always before the iteration may stop. The loops over the grid are
    fused, and the force constraint's rescaling of p and u is applied in the next pass over them:
    at 1024^2 the passes over memory cost as much as the transforms. */
+typedef struct {
+  PetscReal rtol;    /* -adh_predictor_rtol: stop when an iteration changes p by less than this of its 1-norm */
+  PetscInt  max_it;  /* -adh_predictor_max_it */
+  PetscBool fourier; /* -adh_predictor_fourier: under force control, precondition with the stiffness E*|q|/2 */
+  PetscInt  its;     /* iterations so far, over all steps */
+} PolonskyKeerData;
+
 /* The predictor's work vectors, at every way out of it. */
 static PetscErrorCode DestroyWork(Vec *u, Vec *g, Vec *t, Vec *r, Vec *z)
 {
@@ -45,6 +52,7 @@ static PetscErrorCode DestroyWork(Vec *u, Vec *g, Vec *t, Vec *r, Vec *z)
 
 static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal target)
 {
+  PolonskyKeerData  *pk = (PolonskyKeerData *)s->pops.data;
   const PetscReal    F = force ? target : 0.0, d = force ? 0.0 : target;
   const PetscReal    A = s->grid->hx * s->grid->hy, N = (PetscReal)s->grid->Nx * s->grid->Ny;
   Vec                p = s->p, u, g, t, r, z = NULL;
@@ -64,7 +72,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   /* at fixed d on a periodic cell the preconditioned direction can be nearly uniform over a large
      set, which K hardly feels (it has no mean mode): the step then empties the set (seen at
      1024^2). With the force constraint that mode is projected out. */
-  if (s->predictor_fourier && force) PetscCall(VecDuplicate(p, &z));
+  if (pk->fourier && force) PetscCall(VecDuplicate(p, &z));
   PetscCall(VecGetLocalSize(p, &n));
   /* start from the previous pressure (scaled to F), or from a uniform one (force), or from the
      overlap w = max(0, d - h) scaled to the least energy along it, c = w.(d - h) / w.K w
@@ -97,19 +105,19 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   }
   PetscCall(VecSet(t, 0.0));
   if (!have_u) PetscCall(MatMult(s->K, p, u));
-  for (it = 0; it < s->predictor_max_it; it++) {
+  for (it = 0; it < pk->max_it; it++) {
     PetscReal loc[4], glob[4], G, beta, tau;
 
     PetscCall(AdhSolverStopRequested_Private(s, &stop));
     if (stop) break;
 
-    if (missed > 1e-7 || (change <= s->predictor_rtol && missed > 0)) {
+    if (missed > 1e-7 || (change <= pk->rtol && missed > 0)) {
       PetscCall(VecScale(p, scale));
       scale = 1.0;
       PetscCall(MatMult(s->K, p, u));
       missed = 0.0;
       updates++;
-    } else if (change <= s->predictor_rtol) break;
+    } else if (change <= pk->rtol) break;
     /* rescale; the set p > 0, and the gap's mean there (the indentation d) */
     PetscCall(VecGetArray(p, &pa));
     PetscCall(VecGetArray(u, &ua));
@@ -244,18 +252,18 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscCall(VecScale(p, scale));
   PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
   if (force) s->d = gbar;
-  s->predictor_its += it;
+  pk->its += it;
   /* the set is where the pressure is positive; the unit response vanishes off it, as p does */
   {
     PetscScalar *xa = NULL;
-    if (s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
+    if (s->set_response) PetscCall(VecGetArray(s->set_response, &xa));
     PetscCall(VecGetArray(p, &pa));
     for (k = 0; k < n; k++) {
       s->in_set[k] = PetscRealPart(pa[k]) > 0;
       if (xa && !s->in_set[k]) xa[k] = 0.0;
     }
     PetscCall(VecRestoreArray(p, &pa));
-    if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
+    if (xa) PetscCall(VecRestoreArray(s->set_response, &xa));
   }
   PetscCall(AdhSolverRebuildSet_Private(s));
   PetscCall(DestroyWork(&u, &g, &t, &r, &z));
@@ -263,9 +271,48 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscFunctionReturn(0);
 }
 
-PETSC_INTERN PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
+static PetscErrorCode SetFromOptions_PolonskyKeer(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+{
+  PolonskyKeerData *pk = (PolonskyKeerData *)s->pops.data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "ADHPREDICTORPOLONSKYKEER", pk->rtol, &pk->rtol, NULL));
+  PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "ADHPREDICTORPOLONSKYKEER", pk->fourier, &pk->fourier, NULL));
+  PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "ADHPREDICTORPOLONSKYKEER", pk->max_it, &pk->max_it, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode View_PolonskyKeer(AdhSolver s, PetscViewer viewer)
+{
+  PolonskyKeerData *pk = (PolonskyKeerData *)s->pops.data;
+  PetscBool         isascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (isascii) PetscCall(PetscViewerASCIIPrintf(viewer, "stops at a change of %g of the pressure's 1-norm or after %" PetscInt_FMT " iterations%s; %" PetscInt_FMT " iterations so far\n", (double)pk->rtol, pk->max_it, pk->fourier ? ", preconditioned under force control" : "", pk->its));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_PolonskyKeer(AdhSolver s)
 {
   PetscFunctionBegin;
-  s->predict = PolonskyKeer;
+  PetscCall(PetscFree(s->pops.data));
+  PetscFunctionReturn(0);
+}
+
+PETSC_INTERN PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver s)
+{
+  PolonskyKeerData *pk;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&pk));
+  pk->rtol                    = 1e-8;
+  pk->max_it                  = 10000;
+  pk->fourier                 = PETSC_TRUE;
+  s->pops.data                = pk;
+  s->pops.predict             = PolonskyKeer;
+  s->pops.base.setfromoptions = SetFromOptions_PolonskyKeer;
+  s->pops.base.view           = View_PolonskyKeer;
+  s->pops.base.destroy        = Destroy_PolonskyKeer;
   PetscFunctionReturn(0);
 }

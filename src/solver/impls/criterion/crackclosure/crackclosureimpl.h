@@ -3,6 +3,14 @@
 #define ADHBEM_CRACKCLOSUREIMPL_H
 #include "solver/solverimpl.h"
 
+/* the rows crack-closure looks at each side of a point: its averaging radius, and at least the radius of its estimate of the
+   edge's normal */
+#define ADH_NORMAL_RADIUS 3
+static inline PetscInt AdhCrackClosureWidth(PetscReal radius)
+{
+  return PetscMax(ADH_NORMAL_RADIUS, (PetscInt)PetscCeilReal(radius));
+}
+
 /* The rows a rank looks at of one grid vector: the vector (its own rows) and the buffer of the
    rows other ranks own (FetchRows), and, while in use, the row pointers (GetRows). */
 typedef struct {
@@ -24,8 +32,9 @@ typedef struct {
 } FrontEntry;
 
 typedef struct {
-  PetscReal radius;     /* the release rate is averaged along the front within radius grid spacings, */
-  PetscReal radius_max; /* or near dgamma within the front's radius of curvature, up to radius_max */
+  PetscReal radius;     /* -adh_criterion_radius: the release rate is averaged along the front within radius grid spacings, */
+  PetscReal radius_max; /* -adh_criterion_radius_max: or near dgamma within the front's radius of curvature, up to radius_max */
+  PetscBool certify;    /* -adh_criterion_certify: its certified early stop of intermediate solves */
   PetscInt  width;      /* rows looked at each side: AdhCrackClosureWidth(radius_max) */
   /* The rows this rank looks at: its own and width rows each side, gym rows from gys (wrapped on
      a periodic cell, so a cell with fewer rows than that holds some rows several times; clipped

@@ -13,7 +13,7 @@
    may apply, |mean - dgamma| > E. */
 PetscErrorCode AdhCrackClosureRules_Private(AdhSolver s, PetscBool detach, PetscReal perr, PetscInt *removed, PetscReal *ratio, AdhDetachDecision *decision, PetscReal *needed)
 {
-  CrackClosure      *cc = (CrackClosure *)s->crdata;
+  CrackClosure      *cc = (CrackClosure *)s->crops.data;
   const AdhGrid      g  = s->grid;
   const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar); /* dgamma = chi Sigma^2 / (hx hy E*) */
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
@@ -147,7 +147,7 @@ PetscErrorCode AdhCrackClosureRules_Private(AdhSolver s, PetscBool detach, Petsc
   if (decision) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &E, 1, MPIU_REAL, MPIU_MAX, s->comm));
 
   /* pass 2: the mean release rate of the front points within each point's window, against dgamma */
-  if (detach && s->xunit) PetscCall(VecGetArray(s->xunit, &xa));
+  if (detach && s->set_response) PetscCall(VecGetArray(s->set_response, &xa));
   PetscCall(AdhCrackClosureGetRows_Private(cc, &cc->Gf, &Gl));
   PetscCall(AdhCrackClosureEnsureInnerLinks_Private(s, cc, wrap, Gl)); /* the set's front decides them: once a set */
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_TRUE, &ta, &tu));
@@ -194,7 +194,7 @@ PetscErrorCode AdhCrackClosureRules_Private(AdhSolver s, PetscBool detach, Petsc
     }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
   PetscCall(AdhCrackClosureRestoreRows_Private(&cc->Gf, &Gl));
-  if (xa) PetscCall(VecRestoreArray(s->xunit, &xa));
+  if (xa) PetscCall(VecRestoreArray(s->set_response, &xa));
   PetscCall(VecRestoreArray(s->p, &pa));
   if (removed) {
     PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));

@@ -28,22 +28,9 @@ PETSC_EXTERN PetscReal AdhCriticalStress(PetscReal hx, PetscReal hy, PetscReal E
 
 /* ---- grid/grid.c: the Nx x Ny element grid, distributed by rows ---- */
 
-typedef struct _n_AdhGrid *AdhGrid;
-/* A distributed FFT of a grid's size, shared by its operators (compliance.c). */
-typedef struct _n_AdhTransform *AdhTransform;
-struct _n_AdhGrid {
-  MPI_Comm  comm;
-  PetscInt  Nx, Ny;   /* elements per side */
-  PetscReal Lx, Ly;   /* domain side lengths */
-  PetscReal hx, hy;   /* element sizes Lx/Nx, Ly/Ny */
-  PetscInt  ys, ym;   /* this rank's rows: j in [ys, ys + ym), all i */
-  PetscBool setup;
-  const char *prefix; /* options prefix (borrowed), also used by the compliance */
-  PetscInt  fftw_effort; /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
-  PetscReal fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
-  AdhTransform transforms[2]; /* physical size and zero-padded (2Ny x 2Nx), made on first use */
-  MPI_Datatype row_types[2];  /* one row of scalars, of chars (AdhGridGetRowType), made on first use */
-};
+/* A PETSc object (class "AdhGrid"); its insides are private (src/grid/gridimpl.h). */
+typedef struct _p_AdhGrid *AdhGrid;
+PETSC_EXTERN PetscClassId ADH_GRID_CLASSID;
 
 PETSC_EXTERN PetscErrorCode AdhGridCreate(MPI_Comm, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhGridSetSizes(AdhGrid, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly);
@@ -53,6 +40,9 @@ PETSC_EXTERN PetscErrorCode AdhGridView(AdhGrid, PetscViewer);
 PETSC_EXTERN PetscErrorCode AdhGridDestroy(AdhGrid *);
 /* Local rows owned by this rank: j in [ys, ys+ym), all i in [0, Nx). */
 PETSC_EXTERN PetscErrorCode AdhGridGetOwnership(AdhGrid, PetscInt *ys, PetscInt *ym);
+/* Its elements per side and the domain's side lengths, and (after set-up) the element sizes. */
+PETSC_EXTERN PetscErrorCode AdhGridGetSizes(AdhGrid, PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly);
+PETSC_EXTERN PetscErrorCode AdhGridGetSpacing(AdhGrid, PetscReal *hx, PetscReal *hy);
 /* The number of rows of every rank (an array of the communicator's size; PetscFree it). */
 PETSC_EXTERN PetscErrorCode AdhGridGetRowsPerRank(AdhGrid, PetscInt **ly);
 /* Other ranks' rows of grid data: a PetscSF with one root per row this rank owns and one leaf per

@@ -13,11 +13,14 @@ from common import ROOT
 SRC = os.path.join(ROOT, "src")
 # bottom to top: a layer may use itself and the layers before it
 LAYERS = ["sys", "grid", "geometry", "solver", "results"]
-# the one place a lower layer names a higher one: the registration of the solver's types and of
-# the results writer (the way PETSc's XXXInitializePackage reaches its implementations); it may
-# name the types' create functions and the results layer's, nothing else above it
-REGISTRATION = "solver/interface/solverregis.c"
-REGISTERED = r"^Adh(Criterion|Control|Predictor)Create_\w+$|^Adh(Output|Checkpoint)\w*_Private$"
+# the one place a lower layer names a higher one: the solver's package, which binds the results
+# writer and registers the built-in types (the way PETSc's XXXInitializePackage reaches its
+# implementations); it may name the results layer's functions and the types' registration, nothing
+# else above it. The types are registered in TYPES, beside them, so that a new type edits no
+# interface file.
+REGISTRATION = "solver/interface/solverpackage.c"
+REGISTERED = r"^AdhSolverRegisterAll_Private$|^Adh(Output|Checkpoint)\w*_Private$"
+TYPES = "solver/impls/register.c"
 KINDS = {"criterion": "AdhCriterionCreate_", "control": "AdhControlCreate_", "predictor": "AdhPredictorCreate_"}
 
 
@@ -111,9 +114,9 @@ def type_units(kind):
 def test_each_registered_type_is_one_file_registered_in_one_place(kind):
     """An implementation includes only the solver's private header (a folder's files only the
     folder's header, which includes it), defines one public function, its create (a folder's files
-    share what else they need as ..._Private), and solverregis.c registers it: a new type is one
-    file or folder and two lines there."""
-    with open(os.path.join(SRC, REGISTRATION)) as f:
+    share what else they need as ..._Private), and impls/register.c registers it: a new type is one
+    file or folder and its prototype and registration line there."""
+    with open(os.path.join(SRC, TYPES)) as f:
         registration = f.read()
     units = type_units(kind)
     assert len(units) >= 2
@@ -137,4 +140,34 @@ def test_each_registered_type_is_one_file_registered_in_one_place(kind):
                 assert re.findall(r'#include\s+"([^"]+)"', f.read()) == ["solver/solverimpl.h"], header
         where = os.path.relpath(os.path.dirname(files[0]) if folder else files[0], SRC)
         assert len(public) == 1 and public[0].startswith(KINDS[kind]), f"{where}: public functions {public}"
-        assert re.search(rf"Register\(\w+, {public[0]}\)", registration), f"{public[0]} is not registered in {REGISTRATION}"
+        assert re.search(rf"Register\(\w+, {public[0]}\)", registration), f"{public[0]} is not registered in {TYPES}"
+
+
+def test_the_interface_reads_no_types_options_and_branches_on_no_type():
+    """A type owns its options: none that a type reads (PetscOptions* in impls/) is read in
+    interface/, and interface/ names a built-in type only where it chooses the defaults (the
+    solver's creation and set-up), so that adding a type edits no interface file."""
+    read = collections.defaultdict(set)
+    for path in sources():
+        if path.startswith("solver/") and path.endswith(".c"):
+            for name in re.findall(r'PetscOptions\w+\(\s*"(-adh_\w+)"', code(path, strings=True)):
+                read[name].add(path)
+    typed = {n for n, paths in read.items() if any(p.startswith("solver/impls/") for p in paths)}
+    assert {"-adh_criterion_radius", "-adh_pulloff_rtol", "-adh_predictor_rtol"} <= typed, "the pattern no longer finds the types' options"
+    shared = {n: sorted(p for p in paths if p.startswith("solver/interface/")) for n, paths in read.items() if n in typed}
+    assert not any(shared.values()), f"types' options read in the interface: {shared}"
+    defaults = {"solver/interface/solverbasic.c", "solver/interface/solversetup.c"}
+    named = {p: sorted(set(re.findall(r"\bADH(?:CRITERION|CONTROL|PREDICTOR)[A-Z]+\b", code(p))))
+             for p in sources() if p.startswith("solver/interface/") and p not in defaults}
+    assert not any(named.values()), f"interface files that name a type: { {p: n for p, n in named.items() if n} }"
+
+
+def test_the_public_header_holds_only_the_api():
+    """include/adhbem.h declares the API: the objects (solver, grid) are opaque, their structs and
+    the transform's in the layers' private headers."""
+    with open(os.path.join(ROOT, "include", "adhbem.h")) as f:
+        header = re.sub(r"/\*.*?\*/", " ", f.read(), flags=re.S)
+    assert re.search(r"typedef struct _p_AdhGrid \*AdhGrid;", header) and re.search(r"typedef struct _p_AdhSolver \*AdhSolver;", header)
+    bodies = re.findall(r"struct\s+(_[pn]_\w+)\s*\{", header)
+    assert not bodies, f"object structs in the public header: {bodies}"
+    assert "AdhTransform" not in header and "_Private" not in header

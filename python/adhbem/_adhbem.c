@@ -206,7 +206,7 @@ static PyObject *py_rough_surface(PyObject *self, PyObject *args)
   PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
   CatchErrorsBegin();
   ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
-  if (!ierr) ierr = AdhSurfaceSetFromOptions(grid->comm, prefix, &s);
+  if (!ierr) ierr = AdhSurfaceSetFromOptions(PyPetscComm_Get(pycomm), prefix, &s);
   if (!ierr) ierr = AdhGridSetUp(grid);
   if (!ierr) ierr = AdhGridCreateVector(grid, &z);
   if (!ierr) ierr = AdhSurfaceGenerate(grid, &s, z);
@@ -452,6 +452,16 @@ static PyObject *py_solver_create(PyObject *self, PyObject *args)
   }
 }
 
+/* The solver's grid as a petsc4py PETSc.Object (class AdhGrid), which takes a reference of its own. */
+static PyObject *py_solver_grid(PyObject *self, PyObject *args)
+{
+  AdhSolver s;
+  AdhGrid   grid;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &s)) return NULL;
+  PyPetscCall(AdhSolverGetGrid(s, &grid));
+  return PyPetscObject_New((PetscObject)grid);
+}
+
 static PyObject *state_columns(const AdhState *);
 
 /* The current state as a dict of the curve's columns (statistics included). */
@@ -617,6 +627,7 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   IS          is;
   AdhGrid     grid;
   AdhBoundary boundary;
+  PetscReal   hx, hy, Lx, Ly;
   const char *name = "";
   if (!PyArg_ParseTuple(args, "O&|s", solver_arg, &s, &name)) return NULL;
   /* the displacement and a uniform critical stress are made into vectors only when asked for */
@@ -624,8 +635,10 @@ static PyObject *py_solver_objects(PyObject *self, PyObject *args)
   PyPetscCall(AdhSolverGetCompliance(s, &K));
   PyPetscCall(AdhSolverGetContactSet(s, &is));
   PyPetscCall(AdhSolverGetGrid(s, &grid));
+  PyPetscCall(AdhGridGetSizes(grid, NULL, NULL, &Lx, &Ly));
+  PyPetscCall(AdhGridGetSpacing(grid, &hx, &hy));
   PyPetscCall(AdhSolverGetBoundary(s, &boundary));
-  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d,s:s}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", Sigma ? PyPetscVec_New(Sigma) : (Py_INCREF(Py_None), Py_None), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)grid->hx, "hy", (double)grid->hy, "Lx", (double)grid->Lx, "Ly", (double)grid->Ly, "boundary", AdhBoundaries[boundary]);
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:d,s:d,s:d,s:d,s:s}", "pressure", PyPetscVec_New(p), "displacement", u ? PyPetscVec_New(u) : (Py_INCREF(Py_None), Py_None), "gap", PyPetscVec_New(g), "profile", PyPetscVec_New(h), "critical_stress", Sigma ? PyPetscVec_New(Sigma) : (Py_INCREF(Py_None), Py_None), "compliance", PyPetscMat_New(K), "contact_set", PyPetscIS_New(is), "hx", (double)hx, "hy", (double)hy, "Lx", (double)Lx, "Ly", (double)Ly, "boundary", AdhBoundaries[boundary]);
 }
 
 static PyObject *py_solver_sigma(PyObject *self, PyObject *args)
@@ -736,6 +749,7 @@ static PyMethodDef methods[] = {
   {"solver_write", py_solver_write, METH_VARARGS, "solver_write(s, file)"},
   {"solver_view", py_solver_view, METH_VARARGS, "solver_view(s)"},
   {"solver_progress", py_solver_progress, METH_VARARGS, "solver_progress(s[, seconds]) -> the -adh_progress before (set when given)"},
+  {"solver_grid", py_solver_grid, METH_VARARGS, "solver_grid(s) -> PETSc.Object: the solver's grid (class AdhGrid)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},

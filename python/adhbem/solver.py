@@ -187,6 +187,13 @@ class Solver:
         with it, hold a reference to it."""
         return self._s
 
+    @property
+    def grid(self) -> PETSc.Object:
+        """The solver's element grid as a petsc4py ``PETSc.Object`` (class ``AdhGrid``): ``view()``
+        prints its elements, element sizes and domain. It holds a reference of its own, so it
+        stays valid after the solver is destroyed."""
+        return _adhbem.solver_grid(self._s)
+
     def __enter__(self) -> "Solver":
         return self
 

@@ -3,7 +3,7 @@
    here once (layout, shape, dtype, finite values) for every such input. Every check is
    collective, so all ranks fail together, and every message names the option and the file. */
 #include <petscviewerhdf5.h>
-#include "adhbem.h"
+#include "grid/gridimpl.h"
 
 typedef enum { FIELD_MISSING, FIELD_NPY, FIELD_HDF5, FIELD_OTHER } FieldFormat;
 
@@ -200,6 +200,7 @@ PetscErrorCode AdhFieldCheck(AdhGrid grid, const char what[], Vec v)
   int                ok[2] = {1, 1};
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCheck(grid->setup, grid->comm, PETSC_ERR_ORDER, "%s: the grid is not set up yet", what);
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(VecGetSize(v, &N));
@@ -249,6 +250,7 @@ PetscErrorCode AdhFieldLoad(AdhGrid grid, const char option[], const char path[]
   char what[PETSC_MAX_PATH_LEN + 64];
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCheck(path && path[0], grid->comm, PETSC_ERR_ARG_WRONG, "%s: no file given", option);
   PetscCall(FieldFormatOf(grid->comm, path, &format));
   PetscCheck(format != FIELD_MISSING, grid->comm, PETSC_ERR_FILE_OPEN, "%s: cannot open %s", option, path);

@@ -27,6 +27,7 @@ PetscErrorCode AdhIndenterFill(AdhGrid grid, AdhIndenter *ind, Vec h)
   PetscInt     ys, ym, i, j;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   if (ind->type == ADH_INDENTER_FILE) {
     PetscCheck(ind->topography[0], grid->comm, PETSC_ERR_ARG_WRONG, "-adh_indenter file needs -adh_topography FILE (.npy or .h5)");

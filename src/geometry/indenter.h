@@ -1,7 +1,7 @@
 /* Indenter profiles (indenter.c). */
 #ifndef ADHBEM_INDENTER_H
 #define ADHBEM_INDENTER_H
-#include "adhbem.h"
+#include "grid/gridimpl.h"
 
 typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH, ADH_INDENTER_ARRAY } AdhIndenterType;
 PETSC_EXTERN const char *const AdhIndenterTypes[];

@@ -21,7 +21,7 @@
    Same machine (libm, CPU features) assumed: FFTW's estimate and libm's log/cos are per build. */
 #include <fftw3-mpi.h>
 #include <stdint.h>
-#include "adhbem.h"
+#include "grid/gridimpl.h"
 
 /* A mode whose wavenumber lies on the cut-off to this relative rounding counts as inside. */
 #define EDGE_RTOL 1e-9
@@ -349,6 +349,7 @@ PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
   PetscInt y0, ny, ys, ym, n, N = grid->Nx * grid->Ny;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCall(VecGetSize(z, &n));
@@ -410,6 +411,7 @@ PetscErrorCode AdhSurfaceWriteHeights(AdhGrid grid, AdhSurface *s, PetscViewer v
   Vec      z;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCall(GenerateRows(grid, s, &data, &y0, &ny));

@@ -400,6 +400,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
 PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary boundary, Mat *K)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
   PetscCall(CreateFFTShell(grid, Estar, boundary == ADH_BOUNDARY_FREE ? KIND_FREE : KIND_PERIODIC, K));
   PetscFunctionReturn(0);
@@ -438,6 +439,7 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
 PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat *S)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCall(CreateFFTShell(grid, Estar, KIND_STIFFNESS, S));
   PetscFunctionReturn(0);
 }

@@ -17,7 +17,11 @@
   then call `AdhGridSetUp()`, which distributes the rows. It initialises the package (`AdhInitializePackage()`) if needed.
 
   Nothing is communicated here, but every rank of comm must call it, since the later calls on the grid are collective. The grid
-  keeps comm as it is (not duplicated): it must stay valid while the grid lives.
+  is a PETSc object of class "AdhGrid" (`ADH_GRID_CLASSID`): it can be named, referenced (`PetscObjectReference()`) and
+  viewed like any, and -info :adhgrid shows its messages. It is not a `DM`: its layout is FFTW-MPI's slabs of whole rows,
+  and what it serves (row star forests of any width, the transforms its operators share) is not what a `DMDA` offers,
+  whose ghost maps would cost about 20 bytes a point that nothing here uses. It also keeps comm as it is, for FFTW-MPI:
+  comm must stay valid while the grid lives.
 
   Level: intermediate
 
@@ -28,8 +32,11 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   AdhGrid g;
 
   PetscFunctionBegin;
+  PetscValidPointer(grid, 2);
   PetscCall(AdhInitializePackage());
-  PetscCall(PetscNew(&g));
+  PetscCall(PetscHeaderCreate(g, ADH_GRID_CLASSID, "AdhGrid", "Element grid distributed by rows", "AdhGrid", comm, AdhGridDestroy, AdhGridView));
+  g->ops->view = AdhGridView;
+  PetscCall(PetscObjectChangeTypeName((PetscObject)g, "slabs")); /* one kind of grid: whole rows per rank, FFTW-MPI's slabs */
   g->comm = comm;
   g->Nx = g->Ny = 64;
   g->Lx = g->Ly = 1.0;
@@ -64,6 +71,7 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
 PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx, PetscReal Ly)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCheck(!g->setup, g->comm, PETSC_ERR_ORDER, "Cannot change the grid after AdhGridSetUp()");
   g->Nx = Nx; g->Ny = Ny; g->Lx = Lx; g->Ly = Ly;
   PetscFunctionReturn(0);
@@ -99,6 +107,7 @@ PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
   PetscBool set;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscOptionsBegin(g->comm, g->prefix, "adhbem grid", "AdhGrid");
   PetscCall(PetscOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
   if (set) {
@@ -140,6 +149,7 @@ PetscErrorCode AdhGridSetUp(AdhGrid g)
   PetscMPIInt size;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   if (g->setup) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_size(g->comm, &size));
   PetscCheck(g->Nx > 0 && g->Ny > 0, g->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_n: grid points per side must be positive, got %" PetscInt_FMT ",%" PetscInt_FMT, g->Nx, g->Ny);
@@ -201,6 +211,7 @@ PetscErrorCode AdhGridSetUp(AdhGrid g)
 PetscErrorCode AdhGridGetOwnership(AdhGrid g, PetscInt *ys, PetscInt *ym)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
   if (ys) *ys = g->ys;
   if (ym) *ym = g->ym;
@@ -231,6 +242,7 @@ PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
   PetscMPIInt size;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
   PetscCallMPI(MPI_Comm_size(g->comm, &size));
   PetscCall(PetscMalloc1(size, ly));
@@ -271,6 +283,7 @@ PetscErrorCode AdhGridCreateRowSF(AdhGrid g, PetscInt nrows, const PetscInt rows
   PetscSFNode *owner;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCall(AdhGridGetRowsPerRank(g, &ly));
   PetscCallMPI(MPI_Comm_size(g->comm, &size));
   PetscCall(PetscMalloc1(size + 1, &start));
@@ -317,6 +330,7 @@ PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row
   const PetscInt k = base == MPIU_SCALAR ? 0 : base == MPI_CHAR ? 1 : -1;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
   PetscCheck(k >= 0, g->comm, PETSC_ERR_SUP, "A grid row of MPIU_SCALAR or MPI_CHAR only");
   if (g->row_types[k] == MPI_DATATYPE_NULL) {
@@ -350,6 +364,7 @@ PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row
 PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   PetscCall(AdhGridSetUp(g));
   PetscCall(VecCreate(g->comm, v));
   PetscCall(VecSetSizes(*v, g->ym * g->Nx, g->Nx * g->Ny));
@@ -383,8 +398,64 @@ PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
 PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscReal *x, PetscReal *y)
 {
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   if (x) *x = (i - g->Nx / 2) * g->hx;
   if (y) *y = (j - g->Ny / 2) * g->hy;
+  PetscFunctionReturn(0);
+}
+
+/*@
+  AdhGridGetSizes - Gets the number of elements per side and the side lengths of a grid's domain
+
+  Not Collective
+
+  Input Parameter:
+. g - the grid
+
+  Output Parameters:
++ Nx - the number of elements along x, the points of a row (or `NULL`)
+. Ny - the number of elements along y, the rows (or `NULL`)
+. Lx - the side length of the domain along x (or `NULL`)
+- Ly - the side length of the domain along y (or `NULL`)
+
+  Level: beginner
+
+.seealso: `AdhGridSetSizes()`, `AdhGridGetSpacing()`, `AdhGridGetOwnership()`, `AdhSolverGetGrid()`
+@*/
+PetscErrorCode AdhGridGetSizes(AdhGrid g, PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  if (Nx) *Nx = g->Nx;
+  if (Ny) *Ny = g->Ny;
+  if (Lx) *Lx = g->Lx;
+  if (Ly) *Ly = g->Ly;
+  PetscFunctionReturn(0);
+}
+
+/*@
+  AdhGridGetSpacing - Gets the element sizes of a grid, hx = Lx/Nx and hy = Ly/Ny
+
+  Not Collective
+
+  Input Parameter:
+. g - the grid, set up
+
+  Output Parameters:
++ hx - the element size along x (or `NULL`)
+- hy - the element size along y (or `NULL`)
+
+  Level: beginner
+
+.seealso: `AdhGridGetSizes()`, `AdhGridSetUp()`, `AdhGridGetCoordinates()`
+@*/
+PetscErrorCode AdhGridGetSpacing(AdhGrid g, PetscReal *hx, PetscReal *hy)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridGetSpacing: the grid is not set up (AdhGridSetUp())");
+  if (hx) *hx = g->hx;
+  if (hy) *hy = g->hy;
   PetscFunctionReturn(0);
 }
 
@@ -398,8 +469,8 @@ PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscRea
 - viewer - an ASCII viewer, or `NULL` for the standard output of the grid's communicator
 
   Notes:
-  One line: the number of elements per side, the element sizes (zero before `AdhGridSetUp()`), the domain and the number of
-  ranks. Other viewer types print nothing.
+  The object's line (class, name, number of ranks), then the number of elements per side, the element sizes (zero before
+  `AdhGridSetUp()`) and the domain. Other viewer types print nothing.
 
   Level: intermediate
 
@@ -407,15 +478,17 @@ PetscErrorCode AdhGridGetCoordinates(AdhGrid g, PetscInt i, PetscInt j, PetscRea
 @*/
 PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
 {
-  PetscBool   isascii;
-  PetscMPIInt size;
+  PetscBool isascii;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(g->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
-  PetscCallMPI(MPI_Comm_size(g->comm, &size));
   if (isascii) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "AdhGrid: %" PetscInt_FMT " x %" PetscInt_FMT " elements of %g x %g, domain %g x %g, %d rank(s)\n", g->Nx, g->Ny, (double)g->hx, (double)g->hy, (double)g->Lx, (double)g->Ly, size));
+    PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)g, viewer)); /* "AdhGrid Object: (name) N MPI processes" */
+    PetscCall(PetscViewerASCIIPushTab(viewer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " x %" PetscInt_FMT " elements of %g x %g, domain %g x %g, distributed by rows\n", g->Nx, g->Ny, (double)g->hx, (double)g->hy, (double)g->Lx, (double)g->Ly));
+    PetscCall(PetscViewerASCIIPopTab(viewer));
   }
   PetscFunctionReturn(0);
 }
@@ -429,8 +502,8 @@ PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
 . grid - the grid; nothing happens when *grid is `NULL`
 
   Notes:
-  It releases the grid's references to its FFT transforms, frees its row datatypes (`AdhGridGetRowType()`) and sets *grid to
-  `NULL`. The operators made on the grid (`MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`) hold their own
+  It drops one reference; the last releases the grid's references to its FFT transforms, frees its row datatypes
+  (`AdhGridGetRowType()`) and the grid. It sets *grid to `NULL`. The operators made on the grid (`MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`) hold their own
   reference to the transforms and keep working after the grid is destroyed.
 
   Level: intermediate
@@ -441,10 +514,15 @@ PetscErrorCode AdhGridDestroy(AdhGrid *grid)
 {
   PetscFunctionBegin;
   if (!*grid) PetscFunctionReturn(0);
+  PetscValidHeaderSpecific(*grid, ADH_GRID_CLASSID, 1);
+  if (--((PetscObject)(*grid))->refct > 0) { /* others hold it still */
+    *grid = NULL;
+    PetscFunctionReturn(0);
+  }
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[0]));
   PetscCall(AdhTransformRelease_Private(&(*grid)->transforms[1]));
   for (PetscInt k = 0; k < 2; k++)
     if ((*grid)->row_types[k] != MPI_DATATYPE_NULL) PetscCallMPI(MPI_Type_free(&(*grid)->row_types[k]));
-  PetscCall(PetscFree(*grid));
+  PetscCall(PetscHeaderDestroy(grid));
   PetscFunctionReturn(0);
 }

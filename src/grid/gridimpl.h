@@ -1,9 +1,34 @@
-/* The grid layer's private parts: the distributed transform and the operators' data, shared by
-   transform.c, multiplier.c, compliance.c and meancompliance.c. */
+/* The grid layer's private parts: the grid's struct, the distributed transform and the operators'
+   data, shared by grid.c, transform.c, multiplier.c, compliance.c and meancompliance.c, and read
+   by the layers above (geometry, solver, results) through their private headers. */
 #ifndef ADHBEM_GRIDIMPL_H
 #define ADHBEM_GRIDIMPL_H
 #include <fftw3-mpi.h>
+#include <petsc/private/petscimpl.h>
 #include "adhbem.h"
+
+/* A distributed FFT of a grid's size, shared by its operators (below). */
+typedef struct _n_AdhTransform *AdhTransform;
+
+struct _AdhGridOps {
+  PetscErrorCode (*view)(AdhGrid, PetscViewer);
+};
+
+/* The grid: a PETSc object (PETSCHEADER: name, reference count, -info class adhgrid). */
+struct _p_AdhGrid {
+  PETSCHEADER(struct _AdhGridOps);
+  MPI_Comm     comm;           /* the communicator it was created on (the header holds PETSc's duplicate) */
+  PetscInt     Nx, Ny;         /* elements per side */
+  PetscReal    Lx, Ly;         /* domain side lengths */
+  PetscReal    hx, hy;         /* element sizes Lx/Nx, Ly/Ny */
+  PetscInt     ys, ym;         /* this rank's rows: j in [ys, ys + ym), all i */
+  PetscBool    setup;
+  const char  *prefix;         /* options prefix (borrowed), also used by the compliance */
+  PetscInt     fftw_effort;    /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
+  PetscReal    fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
+  AdhTransform transforms[2];  /* physical size and zero-padded (2Ny x 2Nx), made on first use */
+  MPI_Datatype row_types[2];   /* one row of scalars, of chars (AdhGridGetRowType), made on first use */
+};
 
 /* A distributed in-place r2c transform of one size with its array, plans and (where the grid's
    rows are not FFTW's) the redistribution. The operators of one grid share it (the compliance and

@@ -1,5 +1,5 @@
 /* The results layer's functions: the results file (output.c) and the checkpoint (checkpoint.c). A
-   path reaches them through AdhResultsOps (solver/solverimpl.h), bound in solver/impls/register.c. */
+   path reaches them through AdhResultsOps (solver/solverimpl.h), bound in solver/interface/solverpackage.c. */
 #ifndef ADHBEM_RESULTSIMPL_H
 #define ADHBEM_RESULTSIMPL_H
 #include "solver/solverimpl.h"

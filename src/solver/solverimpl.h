@@ -6,6 +6,7 @@
 #include <petsc/private/petscimpl.h>
 #include <petscviewerhdf5.h>
 #include "adhbem.h"
+#include "grid/gridimpl.h"
 #include "geometry/indenter.h"
 #include "sys/sysimpl.h"
 
@@ -92,9 +93,8 @@ typedef struct {
 } AdhPredictorOps;
 
 /* The registries of the three kinds (interface/criterion.c, control.c, predictor.c); the built-in
-   types are registered in impls/register.c. */
+   types are registered in impls/register.c, which the solver's package calls. */
 PETSC_INTERN AdhRegistry AdhCriteria, AdhControls, AdhPredictors;
-PETSC_INTERN PetscErrorCode AdhSolverRegisterAll_Private(void);
 /* Gives the solver the type `type` of a kind (nothing if it has it): the previous type's destroy,
    the kind's ops (whose first member is its AdhTypeOps) zeroed, the new type's create, and its
    set-up if the solver's is done (fixed: the kind cannot change after set-up); current holds the
@@ -104,7 +104,7 @@ PETSC_INTERN PetscErrorCode AdhSolverSetType_Private(AdhSolver, AdhRegistry *, c
 PETSC_INTERN PetscErrorCode AdhSolverTypeSetFromOptions_Private(AdhSolver, AdhRegistry *, const char type[], AdhTypeOps *);
 
 /* What a path does with its results: the results file (the curve, the fields) and the checkpoint.
-   Written by the results layer (src/results/), bound in impls/register.c, so that the solver calls it
+   Written by the results layer (src/results/), bound in interface/solverpackage.c, so that the solver calls it
    without depending on it. */
 typedef struct {
   PetscErrorCode (*check_writable)(AdhSolver, const char option[], const char file[]);
@@ -359,7 +359,7 @@ PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool 
     if (stop_) PetscFunctionReturn(PETSC_ERR_SIG); \
   } while (0)
 PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
-/* the package of the solver: registers the built-in types (impls/register.c) */
+/* the solver's package (interface/solverpackage.c), and the registration of the built-in types (impls/register.c) */
 PETSC_INTERN PetscErrorCode AdhSolverInitializePackage(void);
 PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscReal e, PetscInt removed, PetscInt *);
 /* The set-update loop of a step at the target, from the current set: solve (the control's

@@ -1,9 +1,9 @@
 /* The package: class id, log events, and FFTW-MPI initialisation, done once. The solver's types
-   register in solver/interface/solverregis.c. */
+   register in solver/impls/register.c. */
 #include <fftw3-mpi.h>
 #include "adhbem.h"
 
-PetscClassId  ADH_CLASSID;
+PetscClassId  ADH_CLASSID, ADH_GRID_CLASSID;
 PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits, ADH_LocalSolve;
 
 static PetscBool AdhPackageInitialized = PETSC_FALSE;
@@ -23,7 +23,8 @@ static PetscErrorCode AdhFinalizePackage(void)
   Not Collective
 
   Notes:
-  It registers the class "AdhSolver" (`ADH_CLASSID`, the solver's; -info :adhsolver filters its messages) and the log events AdhFFTForward, AdhFFTBackward, AdhComplMult,
+  It registers the classes "AdhSolver" (`ADH_CLASSID`, the solver's; -info :adhsolver filters its messages) and "AdhGrid"
+  (`ADH_GRID_CLASSID`, -info :adhgrid) and the log events AdhFFTForward, AdhFFTBackward, AdhComplMult,
   AdhStepSolve, AdhSetUpdate, AdhPredict, AdhDetachTest, AdhAttachLimits and AdhLocalSolve, initialises FFTW-MPI in double and
   single precision, and registers with `PetscRegisterFinalize()` the clean-up of FFTW-MPI. It is done once: later calls return
   at once, until `PetscFinalize()`. `AdhGridCreate()`, `AdhGridSetUp()` and the operators' constructors call it; the solver's
@@ -41,10 +42,13 @@ PetscErrorCode AdhInitializePackage(void)
   fftw_mpi_init();
   fftwf_mpi_init();
   PetscCall(PetscClassIdRegister("AdhSolver", &ADH_CLASSID)); /* the class of the solver, a PETSc object (-info :adhsolver, -log_view) */
+  PetscCall(PetscClassIdRegister("AdhGrid", &ADH_GRID_CLASSID)); /* the element grid, a PETSc object too */
   {
     PetscClassId classids[1];
     classids[0] = ADH_CLASSID;
     PetscCall(PetscInfoProcessClass("adhsolver", 1, classids)); /* -info [:~]adhsolver */
+    classids[0] = ADH_GRID_CLASSID;
+    PetscCall(PetscInfoProcessClass("adhgrid", 1, classids)); /* -info [:~]adhgrid */
   }
   PetscCall(PetscLogEventRegister("AdhFFTForward", ADH_CLASSID, &ADH_FFTForward));
   PetscCall(PetscLogEventRegister("AdhFFTBackward", ADH_CLASSID, &ADH_FFTBackward));

@@ -1,6 +1,6 @@
 """The solver is a PETSc object: viewed with -adh_view through PETSc's viewer options, its -info
 messages filtered by its class, held from Python as a petsc4py PETSc.Object (named, viewed,
-reference counted), and a wrong object handed to it refused."""
+reference counted), and a wrong object handed to it refused. Its grid is a PETSc object too."""
 import subprocess
 
 import pytest
@@ -54,6 +54,27 @@ def test_a_petsc4py_object(tmp_path):
             assert first.startswith("AdhSolver Object: sphere of radius 1 (adhbem") and "MPI process" in first, first
         # the prefix of its options is the object's
         assert obj.getOptionsPrefix().startswith("adhbem") and obj.getOptionsPrefix() == s.prefix
+
+
+@pytest.mark.mpi
+def test_the_grid_a_petsc4py_object(tmp_path):
+    """The grid is a PETSc object of its own (class AdhGrid), reference counted: a reference taken
+    from Python outlives the solver."""
+    s = adhbem.Solver(n=(16, 8), size=(2.0, 1.0), path=[0.01, 0.0], steps=1)
+    grid = s.grid
+    assert isinstance(grid, PETSc.Object) and grid.getClassName() == "AdhGrid"
+    assert grid.getRefCount() == 2  # the solver's and this one
+    s.destroy()
+    assert grid.getRefCount() == 1
+    viewer = PETSc.Viewer().createASCII(str(tmp_path / "grid.txt"), comm=grid.getComm())
+    grid.view(viewer)
+    viewer.destroy()
+    if grid.getComm().getRank() == 0:
+        lines = (tmp_path / "grid.txt").read_text().splitlines()
+        assert lines[0].startswith("AdhGrid Object:") and "MPI process" in lines[0], lines
+        assert lines[1].strip() == "type: slabs", lines
+        assert lines[2].strip() == "16 x 8 elements of 0.125 x 0.125, domain 2. x 1., distributed by rows", lines
+    grid.destroy()
 
 
 def test_another_object_is_refused():

@@ -1,5 +1,6 @@
 /* The grid layer's private parts: the grid's struct, the distributed transform and the operators'
-   data, shared by grid.c, transform.c, multiplier.c, compliance.c and meancompliance.c, and read
+   data, shared by grid.c, transform.c, multiplier.c, compliance.c, compliancequery.c and
+   meancompliance.c, and read
    by the layers above (geometry, solver, results) through their private headers. */
 #ifndef ADHBEM_GRIDIMPL_H
 #define ADHBEM_GRIDIMPL_H

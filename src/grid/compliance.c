@@ -99,21 +99,26 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* The compliance or stiffness shell behind K (K itself, or the one a mean compliance wraps, then
-   with the wrapper's context), or an error naming the call. */
-static PetscErrorCode GetCompliance(Mat K, const char caller[], Compliance **c, MeanCompliance **mean)
+/* The compliance or stiffness shell behind K (K itself, or with through_mean the one a mean
+   compliance wraps, then with the wrapper's context), or an error naming the call. */
+PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, Compliance **c, MeanCompliance **mean)
 {
   void (*mult)(void);
+  PetscBool shell;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(K, MAT_CLASSID, 1);
   *mean = NULL;
+  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSHELL, &shell));
+  PetscCheck(shell, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a %s Mat of adhbem", caller, through_mean ? "compliance, stiffness or mean compliance" : "compliance or stiffness");
   PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
   if (mult == (void (*)(void))MatMult_AdhMeanCompliance_Private) {
+    PetscCheck(through_mean, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s: K is a mean compliance (MatCreateAdhMeanCompliance()), whose bounds are not those of the compliance it wraps; ask that one", caller);
     PetscCall(MatShellGetContext(K, mean));
     K = (*mean)->K;
     PetscCall(MatShellGetOperation(K, MATOP_MULT, &mult));
   }
-  PetscCheck(mult == (void (*)(void))MatMult_Compliance, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a compliance, stiffness or mean compliance Mat of adhbem", caller);
+  PetscCheck(mult == (void (*)(void))MatMult_Compliance, PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_WRONG, "%s needs a %s Mat of adhbem", caller, through_mean ? "compliance, stiffness or mean compliance" : "compliance or stiffness");
   PetscCall(MatShellGetContext(K, c));
   PetscFunctionReturn(0);
 }
@@ -146,7 +151,7 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
   MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(GetCompliance(K, "MatAdhComplianceHasDirectLayout", &c, &mean));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceHasDirectLayout", PETSC_TRUE, &c, &mean));
   *direct = (PetscBool)!c->t->toFFT;
   PetscFunctionReturn(0);
 }
@@ -179,7 +184,7 @@ PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
   MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(GetCompliance(K, "MatAdhComplianceSetSinglePrecision", &c, &mean));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceSetSinglePrecision", PETSC_TRUE, &c, &mean));
   PetscCheck(!single || !c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceSetSinglePrecision: single precision is for MatAdhComplianceMultOnSet, which needs the grid's rows to be the transform's (a periodic grid)");
   if (single) PetscCall(AdhTransformEnsureSingle_Private(c->t, c->comm));
   c->single = single;
@@ -225,7 +230,7 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
   float             *fdata;
 
   PetscFunctionBegin;
-  PetscCall(GetCompliance(K, "MatAdhComplianceMultOnSet", &c, &mean));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceMultOnSet", PETSC_TRUE, &c, &mean));
   PetscCheck(!c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
   data  = c->t->data;

@@ -19,9 +19,8 @@
   `MatAdhComplianceGetSetLambdaMin()` gives a positive bound for sets smaller than the grid. Stiffness: E* pi/max(Lx, Ly), its
   smallest eigenvalue.
 
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`; another Mat is an error, and so is a
+  `MatCreateAdhMeanCompliance()` wrapper, whose bounds are not those of the compliance it wraps.
 
   Level: advanced
 
@@ -29,10 +28,11 @@
 @*/
 PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetLambdaMin", PETSC_FALSE, &c, &mean));
   *lambda_min = c->lambda_min;
   PetscFunctionReturn(0);
 }
@@ -55,9 +55,8 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
   smallest eigenvalue on mean-free vectors, the symbol at the largest wave number) on the rest, so
   v^T K v >= lambda_meanfree (1 - m/N) |v|^2. The bound shrinks to zero as C fills the cell, where K_CC becomes singular.
 
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`; another Mat is an error, and so is a
+  `MatCreateAdhMeanCompliance()` wrapper, whose bounds are not those of the compliance it wraps.
 
   Level: advanced
 
@@ -65,10 +64,11 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
 @*/
 PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lambda_min)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSetLambdaMin", PETSC_FALSE, &c, &mean));
   if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
   PetscFunctionReturn(0);
@@ -87,9 +87,8 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
 - Ny - the number of rows (or `NULL`)
 
   Notes:
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()` or `MatCreateAdhMeanCompliance()` (then
+  the answer is the wrapped compliance's); another Mat is an error.
 
   Level: advanced
 
@@ -97,10 +96,11 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
 @*/
 PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetGridSize", PETSC_TRUE, &c, &mean));
   if (Nx) *Nx = c->Nx;
   if (Ny) *Ny = c->Ny;
   PetscFunctionReturn(0);
@@ -122,9 +122,8 @@ PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
   behind the multiplier (all its rows have the same norm), from the spectrum by Parseval, without a multiply; every row of K, and
   every part of one, is part of such a row (free boundary: the zero-padded circulant holds every offset of the grid).
 
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`; another Mat is an error, and so is a
+  `MatCreateAdhMeanCompliance()` wrapper, whose bounds are not those of the compliance it wraps.
 
   Level: advanced
 
@@ -132,10 +131,11 @@ PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
 @*/
 PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetRowNormBound", PETSC_FALSE, &c, &mean));
   *rho = c->rownorm;
   PetscFunctionReturn(0);
 }
@@ -155,9 +155,8 @@ PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
   It counts `MatMult()`, `MatMultTranspose()` and `MatAdhComplianceMultOnSet()`, in double and in single precision, since the
   operator was created.
 
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()` or `MatCreateAdhMeanCompliance()` (then
+  the answer is the wrapped compliance's); another Mat is an error.
 
   Level: intermediate
 
@@ -165,10 +164,11 @@ PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
 @*/
 PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetMultCount", PETSC_TRUE, &c, &mean));
   *count = c->nmult;
   PetscFunctionReturn(0);
 }
@@ -187,9 +187,8 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
   Notes:
   They are counted in `MatAdhComplianceGetMultCount()` too.
 
-  K must come from `MatCreateAdhCompliance()` or `MatCreateAdhPeriodicStiffness()`: this getter reads the shell's context
-  without checking it, and does not look through a `MatCreateAdhMeanCompliance()` wrapper (as `MatAdhComplianceHasDirectLayout()`
-  does).
+  K must come from `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()` or `MatCreateAdhMeanCompliance()` (then
+  the answer is the wrapped compliance's); another Mat is an error.
 
   Level: advanced
 
@@ -197,10 +196,11 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
 @*/
 PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat K, PetscInt *count)
 {
-  Compliance *c;
+  Compliance     *c;
+  MeanCompliance *mean;
 
   PetscFunctionBegin;
-  PetscCall(MatShellGetContext(K, &c));
+  PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSingleMultCount", PETSC_TRUE, &c, &mean));
   *count = c->nmult_single;
   PetscFunctionReturn(0);
 }

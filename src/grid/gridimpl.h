@@ -95,6 +95,9 @@ PETSC_INTERN PetscErrorCode AdhTransformRelease_Private(AdhTransform *);
 PETSC_INTERN PetscErrorCode AdhTransformEnsureSingle_Private(AdhTransform t, MPI_Comm comm);
 PETSC_INTERN PetscErrorCode AdhGridGetTransform_Private(AdhGrid grid, PetscBool padded, PetscInt effort, PetscReal timelimit, AdhFFTWLayout layout, AdhTransform *tout);
 PETSC_INTERN PetscErrorCode MatMult_AdhMeanCompliance_Private(Mat A, Vec x, Vec y);
+/* The compliance or stiffness shell behind K, with through_mean also behind a mean compliance
+   (then *mean is the wrapper's context), or an error naming the caller (compliance.c). */
+PETSC_INTERN PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, Compliance **c, MeanCompliance **mean);
 PETSC_INTERN PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c);
 PETSC_INTERN PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c);
 PETSC_INTERN PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c);

@@ -427,3 +427,14 @@ def test_solver_whole_grid_equals_windows(comm):
     assert np.array_equal(c_box["contact_points"], c_grid["contact_points"])
     assert np.max(np.abs(c_box["force"] - c_grid["force"])) <= 1e-9 * np.max(np.abs(c_box["force"]))
     assert c_box["contact_points"][0] > 0 and math.isfinite(c_box["force"].min())
+
+
+def test_queries_refuse_another_matrix():
+    """The operator's queries check what they are given: a Mat that is not adhbem's compliance is
+    refused with one line naming the call (it was read as a compliance's context)."""
+    A = PETSc.Mat().createAIJ([4, 4], nnz=1, comm=PETSc.COMM_SELF)
+    A.setUp()
+    A.assemble()
+    with pytest.raises(ValueError, match="MatAdhComplianceGetLambdaMin needs a compliance or stiffness Mat of adhbem"):
+        adhbem.compliance_info(A)
+    A.destroy()

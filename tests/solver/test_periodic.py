@@ -215,7 +215,7 @@ def test_certified_attach_same_sets(tmp_path, criterion):
     runs = {}
     for certify in (1, 0):
         out = tmp_path / f"c{certify}.h5"
-        r = subprocess.run(base + ["-adh_certify", str(certify), "-adh_output", str(out), "-info", ":sys"],
+        r = subprocess.run(base + ["-adh_certify", str(certify), "-adh_output", str(out), "-info", ":adhsolver"],
                            capture_output=True, text=True, timeout=300)
         assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
         with h5py.File(out, "r") as f:

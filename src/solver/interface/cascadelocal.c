@@ -245,7 +245,7 @@ PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s, PetscInt widened)
     PetscCall(AdhSolverDetach_Private(s, &removed));
     s->local_pending = PETSC_FALSE;
     if (removed) PetscCall(AdhSolverRebuildSet_Private(s));
-    PetscCall(PetscInfo(NULL, "d = %g, local solve %" PetscInt_FMT " on %" PetscInt_FMT " points: %" PetscInt_FMT " let go, %" PetscInt_FMT " in the set\n", (double)s->d, s->step_local_solves, s->nwin, removed, s->npoints));
+    PetscCall(PetscInfo(s, "d = %g, local solve %" PetscInt_FMT " on %" PetscInt_FMT " points: %" PetscInt_FMT " let go, %" PetscInt_FMT " in the set\n", (double)s->d, s->step_local_solves, s->nwin, removed, s->npoints));
   } while (removed);
   PetscCall(DestroyWindow(s));
   PetscFunctionReturn(0);

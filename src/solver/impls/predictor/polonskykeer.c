@@ -250,7 +250,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
     PetscFunctionReturn(PETSC_ERR_SIG);
   }
   PetscCall(VecScale(p, scale));
-  PetscCall(PetscInfo(NULL, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
+  PetscCall(PetscInfo(s, "polonsky-keer: %" PetscInt_FMT " iterations, %" PetscInt_FMT " displacement updates, last change %g of the pressure's 1-norm, %g points in contact\n", it, updates, (double)change, (double)nc));
   if (force) s->d = gbar;
   pk->its += it;
   /* the set is where the pressure is positive; the unit response vanishes off it, as p does */

@@ -140,7 +140,7 @@ def test_each_registered_type_is_one_file_registered_in_one_place(kind):
                 assert re.findall(r'#include\s+"([^"]+)"', f.read()) == ["solver/solverimpl.h"], header
         where = os.path.relpath(os.path.dirname(files[0]) if folder else files[0], SRC)
         assert len(public) == 1 and public[0].startswith(KINDS[kind]), f"{where}: public functions {public}"
-        assert re.search(rf"Register\(\w+, {public[0]}\)", registration), f"{public[0]} is not registered in {TYPES}"
+        assert re.search(rf"Register\([\w\"-]+, {public[0]}\)", registration), f"{public[0]} is not registered in {TYPES}"
 
 
 def test_the_interface_reads_no_types_options_and_branches_on_no_type():

@@ -166,6 +166,7 @@ typedef struct {
   PetscReal detach_ratio;            /* the detachment criterion's largest demand over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch carrying a net tension (0: none) */
   PetscReal small_patch_tension;     /* share of the set's tension (the sum of its p < 0) carried by patches of fewer than ADH_RESOLVED_PATCH points */
+  PetscReal cohesive_area, cohesive_force; /* the area off the contact set that carries a traction (a finite-range criterion's cohesive zone) and its force (0 in the JKR limit) */
 } AdhState;
 /* A contact patch smaller than this many points (a disk under 10 elements in radius) lets go as
    the mesh says rather than as the continuum does: its tension is not resolved by the grid. */
@@ -205,6 +206,7 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetControlType(AdhSolver, AdhControlType *)
 typedef const char *AdhCriterionType;
 #define ADHCRITERIONPOHRTPOPOV   "pohrt-popov"
 #define ADHCRITERIONCRACKCLOSURE "crack-closure"
+#define ADHCRITERIONDUGDALE      "dugdale"
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);
@@ -290,6 +292,8 @@ typedef struct {
   PetscReal small_patch_tension;     /* the share of its tension in patches under ADH_RESOLVED_PATCH points */
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch with a net tension there */
   PetscBool resolved;                /* the grid resolves the adhesion (meaningful when state >= 0) */
+  PetscReal cohesive_elements;       /* a finite-range criterion: the elements its cohesive zone covers there (0: none) */
+  PetscReal cohesive_width;          /* and, for a sphere, how many grid spacings wide it is: the annulus around the contact's disk (0: none) */
 } AdhResolution;
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
 /* The lines on how well the grid resolves the adhesion (nothing without tension; a run that never

@@ -368,6 +368,9 @@ class Solver:
         - ``state``, ``force``: the curve row of the largest tension and its force (-1, 0.0: none);
         - ``small_patch_tension``, ``smallest_tensile_patch``: there, the share of the tension
           carried by contact patches under 314 elements, and the smallest patch with a net tension;
+        - ``cohesive_elements``, ``cohesive_width``: with ``criterion="dugdale"``, the elements its
+          cohesive zone covers there, and for a sphere how many grid spacings wide the zone is
+          (under 10 the pull-off force depends on the grid; 0.0: no zone);
         - ``resolved``: the verdict (``None`` before a state carried tension).
 
         The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``, ...
@@ -399,6 +402,9 @@ class Solver:
         - ``pulled_off``: 1 on the state where the contact was lost (the leg ends there);
         - ``smallest_tensile_patch``, ``small_patch_tension``: the smallest patch with a net
           tension, and the share of the tension carried by patches under 314 points;
+        - ``cohesive_area``, ``cohesive_force``: the area off the contact that carries a traction
+          (``criterion="dugdale"``'s cohesive zone) and its force, included in ``force`` (0 in the
+          JKR limit);
         - on a periodic cell, ``mean_pressure`` and ``area_fraction``: force and area over the
           cell's area Lx Ly.
 

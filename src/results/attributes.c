@@ -50,7 +50,7 @@ PetscErrorCode AdhOutputWriteArrayTopography_Private(AdhSolver s, PetscViewer v)
    the grid resolves it (the curve's statistics at that state; absent without tension). */
 PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscInt k)
 {
-  const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved"};
+  const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved", "pull_off_cohesive_width"};
   PetscReal         pull_off     = k >= 0 ? -s->curve.state[k].force : 0.0;
 
   PetscFunctionBegin;
@@ -59,10 +59,11 @@ PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscIn
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[0], PETSC_REAL, &s->curve.state[k].small_patch_tension));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[1], PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[2], PETSC_BOOL, &(PetscBool){AdhSolverResolves_Private(s, &s->curve.state[k])}));
+    if (s->curve.state[k].cohesive_area > 0 && s->indenter.type == ADH_INDENTER_SPHERE) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[3], PETSC_REAL, &(PetscReal){AdhSolverCohesiveWidth_Private(s, &s->curve.state[k])}));
   } else { /* a restart's file may hold those of states after its checkpoint */
     hid_t file_id;
     PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
-    for (PetscInt j = 0; j < 3; j++)
+    for (PetscInt j = 0; j < 4; j++)
       if (H5Aexists_by_name(file_id, "/", resolution[j], H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", resolution[j], H5P_DEFAULT));
   }
   s->pull_off_written = k;

@@ -72,8 +72,10 @@ typedef enum { ADH_DETACH_IN_DOUBT, ADH_DETACH_NONE, ADH_DETACH_SOME } AdhDetach
 typedef struct {
   AdhTypeOps base;
   void      *data;
-  PetscBool  griffith;     /* its detach test leaves the griffith attach rule's limits (s->attach_limit): griffith is its default attach rule */
+  AdhAttach  attach;       /* the attach rule it pairs with, the default (the zero value: penetration) */
+  PetscBool  griffith;     /* its detach test leaves the griffith attach rule's limits (s->attach_limit): only it may use griffith */
   PetscBool  local_solves; /* the default route re-solves the whole set after points let go (-adh_cascade_local inf), where the control allows it */
+  PetscBool  cohesive;     /* it holds tractions off the contact set, in p there (a finite-range model's cohesive zone): the set's solves take their load */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
   /* Optional, for the certified early stop of intermediate solves: the detach test of the exact
      solution p*, decided from the iterate xC (on the set) when every point's decision holds for
@@ -156,6 +158,7 @@ struct _p_AdhSolver {
   Vec       Sigma_field;      /* critical stress of a dgamma field; NULL for a uniform dgamma (Sigma) */
   Vec       Sigma_view;       /* a uniform Sigma as a grid vector, made when asked for (AdhSolverGetFields) */
   Vec       u;                /* made when asked for (AdhSolverGetDisplacement_Private) */
+  Vec       off_load, off_work; /* a cohesive criterion's tractions off the set and their load (setsolve.c), made on first use */
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
   PetscInt  profile_version;  /* counts the profiles h has held (AdhSolverProfileChanged_Private) */
 
@@ -381,5 +384,6 @@ PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, Pe
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
+PETSC_INTERN PetscReal      AdhSolverCohesiveWidth_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 #endif

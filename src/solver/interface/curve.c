@@ -21,6 +21,8 @@ const AdhCurveColumn AdhCurveColumns[] = {
   COLUMN(detach_ratio, PETSC_FALSE),
   COLUMN(smallest_tensile_patch, PETSC_TRUE),
   COLUMN(small_patch_tension, PETSC_FALSE),
+  COLUMN(cohesive_area, PETSC_FALSE),
+  COLUMN(cohesive_force, PETSC_FALSE),
 };
 const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
 

@@ -86,12 +86,24 @@ PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
    ADH_RESOLVED_RADIUS elements. */
 #define ADH_RESOLVED_SHARE  0.1
 #define ADH_RESOLVED_RADIUS 10
+/* A cohesive zone narrower than this many grid spacings: the pull-off force depends on the grid
+   (first order: measured on Maugis' sphere at lambda 1, about 0.4 / width relative, 4% at 10). */
+#define ADH_RESOLVED_ZONE 10
 
 /* Whether the grid resolves the adhesion at state st: the patches that carry the tension are large,
    and so are the smallest asperities' contacts. */
 PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
 {
-  return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS));
+  const PetscReal width = AdhSolverCohesiveWidth_Private(s, st);
+  return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS) && !(width > 0 && width < ADH_RESOLVED_ZONE));
+}
+
+/* A sphere's cohesive zone at state st: the width of the annulus around the contact's disk, in grid
+   spacings (0: no zone, or another profile). */
+PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
+{
+  if (!(st->cohesive_area > 0) || s->indenter.type != ADH_INDENTER_SPHERE) return 0.0;
+  return (PetscSqrtReal((st->area + st->cohesive_area) / PETSC_PI) - PetscSqrtReal(st->area / PETSC_PI)) / PetscMin(s->grid->hx, s->grid->hy);
 }
 
 /*@
@@ -120,8 +132,10 @@ PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
   or the dgamma field changes.
 
   The verdict r->resolved, meaningful when r->state >= 0: at most 10% of the tension at the largest tension is carried
-  by patches of fewer than `ADH_RESOLVED_PATCH` points, and the estimate, if there is one, is at least 10 grid
-  spacings. Computed from the curve, so the same on every rank.
+  by patches of fewer than `ADH_RESOLVED_PATCH` points, the estimate, if there is one, is at least 10 grid spacings,
+  and a sphere's cohesive zone (`ADHCRITERIONDUGDALE`), if there is one, is at least 10 grid spacings wide (its
+  pull-off force converges at first order, about 0.4/width relative). r->cohesive_elements gives the elements the zone
+  covers at that state for any profile. Computed from the curve, so the same on every rank.
 
 .seealso: `AdhSolverResolutionView()`, `AdhCurveGetPullOffState()`, `AdhSolverGetCurve()`, `AdhSolverComputeState()`
 @*/
@@ -140,6 +154,8 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
     r->small_patch_tension    = st->small_patch_tension;
     r->smallest_tensile_patch = st->smallest_tensile_patch;
     r->resolved               = AdhSolverResolves_Private(s, st);
+    r->cohesive_elements      = st->cohesive_area / (s->grid->hx * s->grid->hy); /* a finite-range criterion's zone */
+    r->cohesive_width         = AdhSolverCohesiveWidth_Private(s, st);
   }
   PetscFunctionReturn(0);
 }
@@ -159,7 +175,9 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   One line gives the estimate of `AdhSolverGetResolution()` when there is one, with a warning below 10 grid spacings
   that the pull-off force depends on the grid. When a recorded state carried tension a second line follows on the state
   of the largest tension: the share of its tension in patches of fewer than `ADH_RESOLVED_PATCH` elements, its smallest
-  patch with a net tension, and the verdict. Nothing is printed when the curve has states and none touched (the path
+  patch with a net tension, and the verdict; before it, with `ADHCRITERIONDUGDALE`, a line on the cohesive zone there
+  (for a sphere how many grid spacings wide it is, with a warning below 10; otherwise the elements it covers). Nothing
+  is printed when the curve has states and none touched (the path
   has warned that it never touches).
 
   The adhbem executable prints it at the end of a run.
@@ -180,6 +198,8 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
+  if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is an annulus about %.3g grid spacings wide (%.0f elements)%s\n", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid, about 0.4/width relative)" : ""));
+  else if (r.cohesive_elements > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone covers %.0f elements\n", (double)r.cohesive_elements));
   PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, r.resolved ? "the grid resolves the adhesion" : "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes"));
   PetscFunctionReturn(0);
 }

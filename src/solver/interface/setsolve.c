@@ -85,14 +85,40 @@ PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP ksp, PetscInt it, 
   PetscFunctionReturn(0);
 }
 
+/* The load of the tractions a cohesive criterion holds off the set, on the set's points: w = K q
+   with q the pressure off the set (K the operator of the set's equations on the whole grid); NULL
+   when there is none. One compliance multiply. */
+static PetscErrorCode OffSetLoad(AdhSolver s, const PetscScalar **wa)
+{
+  PetscScalar *qa;
+  PetscReal    qmax;
+
+  PetscFunctionBegin;
+  *wa = NULL;
+  if (!s->off_load) {
+    PetscCall(VecDuplicate(s->p, &s->off_load));
+    PetscCall(VecDuplicate(s->p, &s->off_work));
+  }
+  PetscCall(VecCopy(s->p, s->off_work));
+  PetscCall(VecGetArray(s->off_work, &qa));
+  for (PetscInt k = 0; k < s->nset_local; k++) qa[s->set_local[k]] = 0.0;
+  PetscCall(VecRestoreArray(s->off_work, &qa));
+  PetscCall(VecNorm(s->off_work, NORM_INFINITY, &qmax));
+  if (qmax == 0.0) PetscFunctionReturn(0);
+  PetscCall(MatMult(s->Kcontrol ? s->Kcontrol : s->K, s->off_work, s->off_load));
+  PetscCall(VecGetArrayRead(s->off_load, wa));
+  PetscFunctionReturn(0);
+}
+
 /* x_C from K_CC x_C = (shift - prof)_C (prof NULL: zero), warm-started from x, which is left as it
    is off the set. With certify, the solve may stop as soon as the points to detach are certain
-   (x must then be the pressure). */
+   (x must then be the pressure). The pressure's solve (x = p) of a cohesive criterion also takes
+   the load of the tractions off the set: K_CC p_C = (shift - prof)_C - (K p_off)_C. */
 PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, Vec prof, PetscBool certify)
 {
   KSPConvergedReason reason;
   PetscInt           its, k;
-  const PetscScalar *xa, *ha = NULL, *ta = NULL;
+  const PetscScalar *xa, *ha = NULL, *ta = NULL, *wa = NULL;
   PetscReal          tu;
   PetscBool          field;
   PetscScalar       *xc, *bc, *xw;
@@ -102,6 +128,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   s->certified_attach = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && s->lambda_set <= 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The whole periodic cell is in contact at d = %g: under displacement control the force is undetermined there (d must stay below the mean of the indenter profile, %g); use -adh_control force", (double)s->d, (double)s->mean_h);
+  if (s->crops.cohesive && x == s->p && s->adhesive) PetscCall(OffSetLoad(s, &wa));
   /* The set's points are local to each rank, so restriction is a local gather. */
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
@@ -115,12 +142,13 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   for (k = 0; k < s->nset_local; k++) {
     const PetscInt m = s->set_local[k];
     xc[k]         = xa[m];
-    bc[k]         = shift - (ha ? ha[m] : 0.0);
+    bc[k]         = shift - (ha ? ha[m] : 0.0) - (wa ? wa[m] : 0.0);
     if (field) s->thrC[k] = ADH_SIGMA_AT(ta, tu, m);
   }
   PetscCall(VecRestoreArrayWrite(s->bC, &bc));
   PetscCall(VecRestoreArrayWrite(s->pC, &xc));
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &ta));
+  if (wa) PetscCall(VecRestoreArrayRead(s->off_load, &wa));
   if (prof) PetscCall(VecRestoreArrayRead(prof, &ha));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecNorm(s->bC, NORM_2, &s->bnorm));

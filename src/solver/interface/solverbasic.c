@@ -430,6 +430,8 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   PetscCall(VecDestroy(&s->Sigma_view));
   PetscCall(VecDestroy(&s->p));
   PetscCall(VecDestroy(&s->u));
+  PetscCall(VecDestroy(&s->off_load));
+  PetscCall(VecDestroy(&s->off_work));
   PetscCall(VecDestroy(&s->g));
   PetscCall(VecDestroy(&s->gamma_field));
   PetscCall(VecDestroy(&s->indenter.z));

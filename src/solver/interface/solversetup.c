@@ -183,8 +183,8 @@ static PetscErrorCode WarnFreeTopography(AdhSolver s)
   -adh_critical_stress.
 
   The first call also refuses misspelled -adh_ options; chooses the defaults that depend on other settings (the
-  attach rule reach instead of griffith with a criterion other than crack-closure, which refuses griffith; the
-  predictor none on a free boundary unless one was chosen; FFTW plans without a time limit on a periodic cell);
+  attach rule the criterion pairs with, unless one was chosen: griffith with crack-closure, reach with pohrt-popov,
+  penetration with dugdale; a criterion other than crack-closure refuses griffith; the predictor none on a free boundary unless one was chosen; FFTW plans without a time limit on a periodic cell);
   refuses a grid that the build's PetscInt cannot index, or whose memory estimate exceeds the node's
   (`AdhSolverEstimateMemory()`, -adh_memory_check); fills the profile h from the indenter and reads -adh_gamma_field;
   warns when a rough surface or a topography lies on the default free boundary; and sets up the load control and the
@@ -214,7 +214,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     if (s->boundary == ADH_BOUNDARY_PERIODIC) s->grid->fftw_timelimit = -1.0;
     /* The predictor transforms the whole grid; on a free boundary the loop's bounding-box
        windows cost less (Hertz 256^2: 0.5 s against 3.1 s), so it is used there only if asked. */
-    if (!s->crops.griffith && !s->attach_chosen) s->attach = ADH_ATTACH_REACH; /* griffith's counterpart for a criterion without griffith's limits */
+    if (!s->attach_chosen) s->attach = s->crops.attach; /* the criterion's own: griffith with crack-closure, reach with pohrt-popov */
     PetscCheck(s->crops.griffith || s->attach != ADH_ATTACH_GRIFFITH, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach griffith is the mirror of -adh_criterion crack-closure's detachment test; with -adh_criterion %s use -adh_attach reach or penetration", s->criterion_type);
     if (!s->predictor_chosen && s->boundary == ADH_BOUNDARY_FREE) {
       PetscCall(AdhSolverSetPredictorType(s, ADHPREDICTORNONE));

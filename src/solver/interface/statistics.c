@@ -177,7 +177,7 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   const PetscReal    A = s->grid->hx * s->grid->hy;
   const PetscScalar *pa, *sa;
   PetscScalar        gsum;
-  PetscReal          ratio = 0.0, su;
+  PetscReal          ratio = 0.0, su, zone[2] = {0.0, 0.0};
   PetscInt           k, count[2] = {0, 0};
 
   PetscFunctionBegin;
@@ -188,7 +188,13 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &sa, &su));
   for (k = 0; k < s->nlocal; k++) {
     const PetscReal p = PetscRealPart(pa[k]), Sigma = ADH_SIGMA_AT(sa, su, k);
-    if (!s->in_set[k]) continue;
+    if (!s->in_set[k]) { /* a traction off the set: a cohesive zone's */
+      if (p != 0) {
+        zone[0] += A;
+        zone[1] += p * A;
+      }
+      continue;
+    }
     if (p < 0) count[0]++;
     else if (p > 0) count[1]++;
     if (p < 0 && Sigma > 0) ratio = PetscMax(ratio, -p / Sigma);
@@ -197,6 +203,9 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscCall(VecRestoreArrayRead(s->p, &pa));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 2, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, zone, 2, MPIU_REAL, MPIU_SUM, s->comm));
+  st->cohesive_area     = zone[0];
+  st->cohesive_force    = zone[1];
   st->area_tension      = count[0] * A;
   st->area_compression  = count[1] * A;
   st->max_tension_ratio = ratio;

@@ -78,6 +78,7 @@ static PetscErrorCode Decide_PohrtPopov(AdhSolver s, Vec xC, PetscReal perr, Adh
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver s)
 {
   PetscFunctionBegin;
+  s->crops.attach   = ADH_ATTACH_REACH; /* the gap an element closes under its own critical tension */
   s->crops.evaluate = Evaluate_PohrtPopov;
   s->crops.decide   = Decide_PohrtPopov;
   PetscFunctionReturn(0);

@@ -224,7 +224,8 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver s)
   cc->radius                   = 16.0;
   cc->radius_max               = 64.0;
   s->crops.data                = cc;
-  s->crops.griffith            = PETSC_TRUE; /* its mirror: JKR's and Johnson's loading branches */
+  s->crops.attach              = ADH_ATTACH_GRIFFITH; /* its mirror: JKR's and Johnson's loading branches */
+  s->crops.griffith            = PETSC_TRUE;
   s->crops.local_solves        = PETSC_TRUE;
   s->crops.evaluate            = Evaluate_CrackClosure;
   s->crops.base.setfromoptions = SetFromOptions_CrackClosure;

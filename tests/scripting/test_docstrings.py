@@ -5,12 +5,12 @@ import inspect
 import pytest
 
 import adhbem
-from adhbem import grid, plot, results, solver, surface, topography
+from adhbem import grid, plot, results, solver, surface, theory, topography
 
 PUBLIC = [grid.compliance, grid.compliance_info, grid.grid_shape, grid.row_range, grid.local_rows,
           grid.set_local_rows, grid.gather, surface.rough_surface, results.load, topography.is_surface_topography,
           topography.from_surface_topography, plot.curve, plot.area, plot.contact_map, plot.resolution,
-          plot.figure, plot.plot]
+          plot.figure, plot.plot, theory.tabor_lambda, theory.maugis_sphere, theory.maugis_pulloff]
 
 
 def methods(cls):

@@ -1,0 +1,196 @@
+/*MC
+   ADHCRITERIONDUGDALE - "dugdale": finite-range adhesion, Maugis' cohesive zone (Maugis 1992): the surfaces attract
+   with a constant tension s0 where their gap is at most the range dgamma/s0, and not at all beyond
+
+   A point in contact (gap 0) carries whatever pressure the solve gives and leaves the contact when its tension
+   exceeds s0; a point off the contact whose gap is at most the range carries the tension s0 (the cohesive zone);
+   beyond the range, nothing. The work of separation is s0 times the range, dgamma. A step finds the three sets
+   (contact, cohesive zone, free) consistent at its indentation or force.
+
+   Options Database Keys:
++  -adh_criterion dugdale    - selects this criterion
+-  -adh_dugdale_stress <s0>  - the cohesive stress s0 (required, > 0); the range is dgamma/s0
+
+   Level: intermediate
+
+   Notes:
+   Nothing is singular at the contact's edge: the answer converges with the grid once the cohesive zone spans several
+   elements. For a sphere of radius R the Tabor-Maugis parameter lambda = 2 s0 (R / (pi dgamma K^2))^(1/3), K = 4 E* / 3,
+   goes from DMT (lambda -> 0, pull-off 2 pi dgamma R) to JKR (lambda -> infinity, 1.5 pi dgamma R); -adh_view prints
+   it for a sphere. With a work of adhesion field dgamma(x, y) the range varies, dgamma(x, y)/s0, and s0 is the same
+   everywhere (a point with dgamma = 0 holds no tension).
+
+   The cohesive tractions are held in the pressure p off the contact set: the force, the pressure field and the gap
+   include them, and the set's solves take their load (one compliance multiply more per solve). The zone is updated
+   with the contact: a set update lets go the contact points whose tension exceeds s0 and moves the zone's edge to
+   where the gap is the range, and the set is solved again, until nothing changes; then the points that penetrate
+   join (the attach rule penetration, its default). The -adh_critical_stress option and the certified early stop do
+   not apply.
+
+.seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
+M*/
+#include "solver/solverimpl.h"
+
+typedef struct {
+  PetscReal s0; /* -adh_dugdale_stress: the cohesive stress */
+} Dugdale;
+
+/* The cohesive stress and range of local point k: s0 and dgamma/s0 where the work of adhesion is
+   positive (and the stage is adhesive), none elsewhere. */
+static inline void Cohesion(AdhSolver s, const Dugdale *dd, const PetscScalar *gamma, PetscInt k, PetscReal *s0, PetscReal *range)
+{
+  const PetscReal dgamma = gamma ? PetscRealPart(gamma[k]) : s->gamma;
+
+  *s0    = s->adhesive && dgamma > 0 ? dd->s0 : 0.0;
+  *range = *s0 > 0 ? dgamma / *s0 : 0.0;
+}
+
+/* With detach: the contact points whose tension exceeds s0 leave (into the zone), and every point
+   off the contact takes the zone's tension where its gap is at most the range, none beyond; the
+   number of points that changed (the set must be solved again if any did). Without: the largest
+   tension over s0 on the contact. */
+static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
+{
+  Dugdale           *dd = (Dugdale *)s->crops.data;
+  PetscScalar       *pa, *xa = NULL;
+  const PetscScalar *ga, *gamma = NULL;
+  PetscReal          r     = 0.0;
+  PetscInt           count = 0;
+
+  PetscFunctionBegin;
+  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
+  PetscCall(VecGetArray(s->p, &pa));
+  if (!detach) {
+    for (PetscInt k = 0; k < s->nlocal; k++) {
+      PetscReal s0, range;
+      if (!s->in_set[k] || PetscRealPart(pa[k]) >= 0) continue;
+      Cohesion(s, dd, gamma, k, &s0, &range);
+      r = s0 > 0 ? PetscMax(r, -PetscRealPart(pa[k]) / s0) : PETSC_MAX_REAL;
+    }
+  } else {
+    if (s->set_response) PetscCall(VecGetArray(s->set_response, &xa));
+    for (PetscInt k = 0; k < s->nlocal; k++) {
+      PetscReal s0, range;
+      if (!s->in_set[k]) continue;
+      Cohesion(s, dd, gamma, k, &s0, &range);
+      if (PetscRealPart(pa[k]) < -s0) { /* it lets go, into the zone (its gap is zero) or free (no cohesion) */
+        AdhSolverRemovePoint_Private(s, k, pa, xa);
+        pa[k] = -s0;
+        count++;
+      }
+    }
+    if (xa) PetscCall(VecRestoreArray(s->set_response, &xa));
+    /* the gap of the pressure with those points gone, and the zone's edge where it is the range */
+    PetscCall(VecRestoreArray(s->p, &pa));
+    PetscCall(AdhSolverComputeGap_Private(s));
+    PetscCall(VecGetArray(s->p, &pa));
+    PetscCall(VecGetArrayRead(s->g, &ga));
+    for (PetscInt k = 0; k < s->nlocal; k++) {
+      PetscReal s0, range, want;
+      if (s->in_set[k]) continue;
+      Cohesion(s, dd, gamma, k, &s0, &range);
+      want = s0 > 0 && PetscRealPart(ga[k]) <= range ? -s0 : 0.0;
+      if (PetscRealPart(pa[k]) != want) {
+        pa[k] = want;
+        count++;
+      }
+    }
+    PetscCall(VecRestoreArrayRead(s->g, &ga));
+    s->gap_current = (PetscBool)(count == 0); /* the attach test that follows a test that changed nothing takes this gap */
+  }
+  PetscCall(VecRestoreArray(s->p, &pa));
+  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+  if (removed) PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
+  if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+{
+  Dugdale *dd = (Dugdale *)s->crops.data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
+  PetscCheck(dd->s0 == 0 || (dd->s0 > 0 && !PetscIsInfOrNanReal(dd->s0)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_stress must be > 0 and finite, got %g", (double)dd->s0);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUp_Dugdale(AdhSolver s)
+{
+  Dugdale *dd = (Dugdale *)s->crops.data;
+
+  PetscFunctionBegin;
+  PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
+  PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion dugdale, whose cohesive stress is -adh_dugdale_stress");
+  PetscCheck(s->attach == ADH_ATTACH_PENETRATION, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach %s does not apply to -adh_criterion dugdale: a point joins the contact when it penetrates (-adh_attach penetration)", AdhAttaches[s->attach]);
+  PetscFunctionReturn(0);
+}
+
+/* Tabor-Maugis' lambda of a sphere of radius R: 2 s0 (R / (pi dgamma K^2))^(1/3), K = 4 E* / 3. */
+static PetscReal Lambda(AdhSolver s, PetscReal s0)
+{
+  const PetscReal K = 4.0 * s->Estar / 3.0, R = s->indenter.radius;
+  return 2.0 * s0 * PetscCbrtReal(R / (PETSC_PI * s->gamma * K * K));
+}
+
+/* Its line of -adh_view, and its attributes in the results file. */
+static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
+{
+  Dugdale  *dd    = (Dugdale *)s->crops.data;
+  PetscReal range = dd->s0 > 0 ? s->gamma / dd->s0 : 0.0;
+  PetscBool isascii, ishdf5, sphere = (PetscBool)(s->indenter.type == ADH_INDENTER_SPHERE && s->gamma > 0 && dd->s0 > 0);
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERHDF5, &ishdf5));
+  if (isascii) {
+    if (s->gamma_field) PetscCall(PetscViewerASCIIPrintf(viewer, "cohesive stress s0 = %g; the range dgamma(x,y)/s0 follows the field\n", (double)dd->s0));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "cohesive stress s0 = %g, range dgamma/s0 = %g (%g grid spacings)\n", (double)dd->s0, (double)range, (double)(s->grid->hx > 0 ? range / PetscMin(s->grid->hx, s->grid->hy) : 0)));
+    if (sphere && !s->gamma_field) PetscCall(PetscViewerASCIIPrintf(viewer, "Tabor-Maugis lambda of the sphere %g (JKR: large, DMT: small)\n", (double)Lambda(s, dd->s0)));
+  }
+  if (ishdf5) {
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_stress", PETSC_REAL, &dd->s0));
+    if (!s->gamma_field) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_range", PETSC_REAL, &range));
+    if (sphere && !s->gamma_field) {
+      PetscReal lambda = Lambda(s, dd->s0);
+      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "tabor_lambda", PETSC_REAL, &lambda));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The cohesive stress shapes the answer: a restart repeats it. */
+static PetscErrorCode Shape_Dugdale(AdhSolver s, PetscInt *n, AdhShapingOption shape[])
+{
+  Dugdale *dd = (Dugdale *)s->crops.data;
+
+  PetscFunctionBegin;
+  shape[0] = (AdhShapingOption){"-adh_dugdale_stress", PETSC_REAL, &dd->s0};
+  *n       = 1;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_Dugdale(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(s->crops.data));
+  PetscFunctionReturn(0);
+}
+
+PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
+{
+  Dugdale *dd;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&dd));
+  s->crops.data                = dd;
+  s->crops.attach              = ADH_ATTACH_PENETRATION;
+  s->crops.cohesive            = PETSC_TRUE;
+  s->crops.evaluate            = Evaluate_Dugdale;
+  s->crops.base.setfromoptions = SetFromOptions_Dugdale;
+  s->crops.base.view           = View_Dugdale;
+  s->crops.base.setup          = SetUp_Dugdale;
+  s->crops.base.shape          = Shape_Dugdale;
+  s->crops.base.destroy        = Destroy_Dugdale;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,208 @@
+"""Finite-range adhesion (-adh_criterion dugdale, Maugis' cohesive zone) against Maugis' closed
+form for the sphere (adhbem.theory, Johnson & Greenwood's notation): the pull-off force near DMT
+and between, converging with the grid as the cohesive zone spans more elements, the same under
+force and under displacement control, the contact radius along the path, 1 rank equal to 2 and
+3; the results file's attributes, a restart that changes s0 refused, bad input refused."""
+import math
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+import adhbem
+from adhbem import PETSc
+from adhbem.theory import maugis_pulloff, maugis_sphere, tabor_lambda
+from adhbem_build import EXE
+from common import _max, _min, say
+
+GAMMA = 0.004655  # E* = R = 1: the pull-off contact radius about 0.2 at lambda = 1
+K = 4.0 / 3.0
+FSCALE = math.pi * GAMMA  # pi dgamma R
+ASCALE = (math.pi * GAMMA / K) ** (1 / 3)  # a = A ASCALE
+DSCALE = (math.pi ** 2 * GAMMA ** 2 / K ** 2) ** (1 / 3)  # d = D DSCALE
+
+
+def s0_for(lam):
+    return lam / tabor_lambda(1.0, GAMMA)
+
+
+def serial_only():
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("starts its own process or compares with one")
+
+
+def run(n, lam, control="displacement", path=(0.04, -0.06), steps=100, comm=None, **extra):
+    s = adhbem.Solver(n=n, gamma=GAMMA, criterion="dugdale", dugdale_stress=s0_for(lam), control=control,
+                      path=list(path), steps=steps, **({"comm": comm} if comm else {}), **extra)
+    with s:
+        return s.solve_path()
+
+
+def largest_tension(curve):
+    return -float(np.min(curve["force"]))
+
+
+def test_pulloff_converges_to_maugis_at_lambda_1():
+    """lambda = 1 (pull-off 1.601 pi dgamma R): the error halves with the spacing (the zone spans
+    about 6 and 12 elements at pull-off), and the two grids extrapolated (first order) land within
+    1%."""
+    serial_only()
+    P, _, _ = maugis_pulloff(1.0)
+    exact = -P * FSCALE
+    F = {n: largest_tension(run(n, 1.0)) for n in (64, 128)}
+    err = {n: F[n] / exact - 1 for n in F}
+    extrapolated = 2 * F[128] - F[64]
+    say(f"\ndugdale lambda 1: pull-off {F[64]:.6g} (64), {F[128]:.6g} (128), extrapolated {extrapolated:.6g}, "
+        f"Maugis {exact:.6g}; errors {err[64]:+.2%}, {err[128]:+.2%}")
+    assert 0 < err[128] < 0.6 * err[64] and err[128] < 0.04
+    assert abs(extrapolated / exact - 1) < 0.01
+
+
+def test_resolution_reports_the_zone_width():
+    """The resolution report gives the zone's width at the largest tension (an annulus around the
+    contact's disk) against Maugis' (c - a) at pull-off, within a grid spacing, and its verdict:
+    under 10 spacings the pull-off force depends on the grid."""
+    serial_only()
+    lam = 1.0
+    _, A, _ = maugis_pulloff(lam)
+    _, _, m = maugis_sphere(lam, [A])
+    for n in (64, 128):
+        with adhbem.Solver(n=n, gamma=GAMMA, criterion="dugdale", dugdale_stress=s0_for(lam), path=[0.04, -0.06],
+                           steps=100, progress=False) as s:
+            s.solve_path()
+            r = s.resolution
+        exact = (m[0] - 1) * A * ASCALE * n
+        say(f"\ndugdale lambda 1, {n}^2: zone {r['cohesive_width']:.2f} grid spacings wide ({r['cohesive_elements']:.0f} "
+            f"elements), Maugis {exact:.2f}; resolved {r['resolved']}")
+        assert abs(r["cohesive_width"] - exact) < 1.0 and r["cohesive_elements"] > 0
+        assert r["resolved"] == (exact >= 10)
+
+
+def test_pulloff_near_dmt():
+    """lambda = 0.3, towards DMT (pull-off 1.816 pi dgamma R, 2 as lambda -> 0): the wide zone is
+    resolved already at 64^2."""
+    serial_only()
+    P, _, _ = maugis_pulloff(0.3)
+    F = largest_tension(run(64, 0.3, path=(0.04, -0.08), steps=120))
+    say(f"\ndugdale lambda 0.3: pull-off {F:.6g}, Maugis {-P * FSCALE:.6g} ({F / (-P * FSCALE) - 1:+.2%})")
+    assert abs(F / (-P * FSCALE) - 1) < 0.015
+
+
+def test_force_control_pulls_off_at_the_same_tension():
+    """Under force control the contact comes off at the largest tension (bisected to
+    -adh_pulloff_rtol), the same as the largest one displacement control passes through."""
+    serial_only()
+    disp = largest_tension(run(64, 1.0))
+    force = run(64, 1.0, control="force", path=(0.02, -0.03), steps=50)
+    F = largest_tension(force)
+    say(f"\ndugdale lambda 1, force control: pull-off {F:.6g} against {disp:.6g} under displacement control")
+    assert force["pulled_off"][-1] == 1
+    assert abs(F / disp - 1) < 0.005
+
+
+def path_errors(n):
+    """The worst contact radius error (grid spacings) and the worst and mean force errors (over the
+    pull-off force) against Maugis' a(d) and F(d), from a Hertz preload at lambda = 1, over the
+    states whose contact is larger than the zone before Maugis' turning point."""
+    c = run(n, 1.0, steps=50)
+    A = np.linspace(0.3, 2.2, 400)
+    P, D, _ = maugis_sphere(1.0, A)
+    stable = A >= A[np.argmin(D)]  # the branch displacement control follows
+    pulloff = -maugis_pulloff(1.0)[0] * FSCALE
+    ea, eF = [], []
+    for d, area, F in list(zip(c["d"], c["area"], c["force"]))[1:]:  # the first state is the adhesion-free start
+        a = math.sqrt(area / math.pi)
+        if a < 0.1 or d < D.min() * DSCALE:
+            continue
+        ea.append(abs(a - float(np.interp(d / DSCALE, D[stable], A[stable])) * ASCALE) * n)
+        eF.append(abs(F - float(np.interp(d / DSCALE, D[stable], P[stable])) * FSCALE) / pulloff)
+    return len(ea), max(ea), max(eF), float(np.mean(eF))
+
+
+def test_contact_radius_and_force_along_the_path():
+    """The contact radius sqrt(area/pi) and the force against Maugis' a(d) and F(d) while the sphere
+    is pulled from a Hertz preload (lambda = 1): the radius within 1.5 grid spacings, and the
+    force's error halving with the spacing (64^2 to 128^2; first order: the zone's edge is where an
+    element's centre is within the range), to about 2% of the pull-off force at 128^2."""
+    serial_only()
+    errors = {n: path_errors(n) for n in (64, 128)}
+    for n, (count, ea, worst, mean) in errors.items():
+        say(f"\ndugdale lambda 1, {n}^2, {count} states: contact radius within {ea:.2f} grid spacings of Maugis' a(d); "
+            f"force error at most {worst:.2%}, on average {mean:.2%} of the pull-off force")
+    (n64, a64, w64, m64), (n128, a128, w128, m128) = errors[64], errors[128]
+    assert n64 > 30 and n128 > 30
+    assert a64 < 1.5 and a128 < 1.5
+    assert w128 < 0.6 * w64 and m128 < 0.6 * m64 and m128 < 0.03
+
+
+def test_gamma_field():
+    """A work-of-adhesion field: a constant one is the scalar to rounding; with dgamma halved on the
+    half x > 0 the range halves there (s0 the same) and the pull-off force lies between the two
+    uniform ones'."""
+    serial_only()
+    n, lam = 48, 1.0
+    x = (np.arange(n) - n / 2 + 0.5) / n
+    X, _ = np.meshgrid(x, x)
+    scalar = run(n, lam, steps=40)
+    same = run(n, lam, steps=40, gamma_field=np.full((n, n), GAMMA))
+    assert np.allclose(same["force"], scalar["force"], rtol=0, atol=1e-12 * np.abs(scalar["force"]).max())
+    assert np.array_equal(same["contact_points"], scalar["contact_points"])
+    half = largest_tension(run(n, lam, steps=40, gamma_field=np.where(X > 0, GAMMA / 2, GAMMA)))
+    with adhbem.Solver(n=n, gamma=GAMMA / 2, criterion="dugdale", dugdale_stress=s0_for(lam), path=[0.04, -0.06],
+                       steps=40) as s:
+        weaker = largest_tension(s.solve_path())
+    say(f"\ndugdale with a dgamma field: pull-off {half:.6g} between {weaker:.6g} (dgamma/2) and {largest_tension(scalar):.6g}")
+    assert weaker < half < largest_tension(scalar)
+
+
+@pytest.mark.mpi
+def test_same_curve_on_any_number_of_ranks():
+    """COMM_WORLD against COMM_SELF under both controls: the same contact counts, forces to 1e-10."""
+    mpi = PETSc.COMM_WORLD.tompi4py()
+    for control, path in (("displacement", (0.03, -0.05)), ("force", (0.01, -0.03))):
+        world = run(32, 0.5, control=control, path=path, steps=12)
+        alone = run(32, 0.5, control=control, path=path, steps=12, comm=PETSc.COMM_SELF)
+        same = mpi.allreduce(int(len(world["d"]) == len(alone["d"]) and np.array_equal(world["contact_points"], alone["contact_points"])), op=_min())
+        rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
+        say(f"\ndugdale, {control}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
+        assert same == 1 and rel < 1e-10
+        assert np.min(alone["force"]) < 0
+
+
+def test_results_attributes_and_restart_refusal(tmp_path):
+    """The results file records s0, the range and the sphere's lambda; a restart with another s0 is
+    refused, naming -adh_dugdale_stress, and one with the same goes on."""
+    serial_only()
+    base = [EXE, "-adh_n", "32", "-adh_gamma", str(GAMMA), "-adh_criterion", "dugdale", "-adh_path", "0.03,-0.05",
+            "-adh_steps", "6"]
+    s0 = s0_for(1.0)
+    ck = tmp_path / "ck.h5"
+    r = subprocess.run(base + ["-adh_dugdale_stress", str(s0), "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with h5py.File(tmp_path / "a.h5", "r") as f:
+        assert f.attrs["criterion"] == "dugdale" and f.attrs["attach"] == "penetration"
+        assert float(f.attrs["dugdale_stress"]) == pytest.approx(s0, rel=1e-12)
+        assert float(f.attrs["dugdale_range"]) == pytest.approx(GAMMA / s0, rel=1e-12)
+        assert float(f.attrs["tabor_lambda"]) == pytest.approx(1.0, rel=1e-9)
+    r = subprocess.run(base + ["-adh_dugdale_stress", str(2 * s0), "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode != 0 and "-adh_dugdale_stress" in r.stderr, r.stderr[-2000:]
+    r = subprocess.run(base + ["-adh_dugdale_stress", str(s0), "-adh_restart", str(ck), "-adh_output", str(tmp_path / "c.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+
+
+@pytest.mark.parametrize("args, says", [
+    ([], "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress"),
+    (["-adh_dugdale_stress", "-1"], "-adh_dugdale_stress must be > 0"),
+    (["-adh_dugdale_stress", "0.1", "-adh_attach", "reach"], "-adh_attach reach does not apply to -adh_criterion dugdale"),
+    (["-adh_dugdale_stress", "0.1", "-adh_critical_stress", "0.5"], "-adh_critical_stress does not apply"),
+])
+def test_bad_input_is_one_line(args, says):
+    serial_only()
+    r = subprocess.run([EXE, "-adh_n", "16", "-adh_gamma", "0.001", "-adh_criterion", "dugdale", "-adh_path", "0.01,0",
+                        "-adh_steps", "1", *args], capture_output=True, text=True, timeout=60)
+    assert r.returncode != 0 and says in r.stderr, r.stderr[-2000:]
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr

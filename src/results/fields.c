@@ -1,5 +1,5 @@
 /* The fields of the states in the results file: a frame per state written (-adh_fields,
-   -adh_fields_stride), the contact set as a byte per point. */
+   -adh_fields_stride), the contact set (and a cohesive zone) as a byte per point. */
 #include "results/resultsimpl.h"
 
 /* The contact mask of the current state as frame `frame` of the uint8 dataset contact
@@ -31,7 +31,12 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   count[1]  = (hsize_t)ym;
   count[2]  = (hsize_t)g->Nx;
   PetscCall(PetscMalloc1(s->nlocal + 1, &mask));
-  for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : 0;
+  { /* 1 in contact, 2 in a cohesive zone (a traction off the set: -adh_criterion dugdale), 0 free */
+    const PetscScalar *pa;
+    PetscCall(VecGetArrayRead(s->p, &pa));
+    for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : PetscRealPart(pa[k]) != 0 ? 2 : 0;
+    PetscCall(VecRestoreArrayRead(s->p, &pa));
+  }
   PetscCall(AdhH5WriteBlock_Private(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask));
   PetscCall(PetscFree(mask));
   ADH_H5(H5Dclose(dset));

@@ -171,17 +171,27 @@ def test_same_curve_on_any_number_of_ranks():
 
 
 def test_results_attributes_and_restart_refusal(tmp_path):
-    """The results file records s0, the range and the sphere's lambda; a restart with another s0 is
-    refused, naming -adh_dugdale_stress, and one with the same goes on."""
+    """The results file records s0, the range and the sphere's lambda, and its contact field the
+    cohesive zone (2) beside the contact (1); a restart with another s0 is refused, naming
+    -adh_dugdale_stress, and one with the same goes on."""
     serial_only()
     base = [EXE, "-adh_n", "32", "-adh_gamma", str(GAMMA), "-adh_criterion", "dugdale", "-adh_path", "0.03,-0.05",
             "-adh_steps", "6"]
     s0 = s0_for(1.0)
     ck = tmp_path / "ck.h5"
-    r = subprocess.run(base + ["-adh_dugdale_stress", str(s0), "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
-                       capture_output=True, text=True, timeout=120)
+    r = subprocess.run(base + ["-adh_dugdale_stress", str(s0), "-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5"),
+                               "-adh_fields", "contact,pressure"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]
     with h5py.File(tmp_path / "a.h5", "r") as f:
+        # the contact field: 1 in contact, 2 in the cohesive zone, whose tension is s0 in the pressure field
+        contact, pressure = f["fields/contact"][()], f["fields/pressure"][()]
+        cells = 32 * 32 / float(f.attrs["Lx"] * f.attrs["Ly"])
+        for frame, row in enumerate(f["fields/state"][()].astype(int)):
+            assert (contact[frame] == 1).sum() == f["curve/contact_points"][row]
+            assert (contact[frame] == 2).sum() == round(f["curve/cohesive_area"][row] * cells)
+            assert np.allclose(pressure[frame][contact[frame] == 2], -s0, rtol=1e-12)
+            assert np.all(pressure[frame][contact[frame] == 0] == 0)
+        assert (contact == 2).any()
         assert f.attrs["criterion"] == "dugdale" and f.attrs["attach"] == "penetration"
         assert float(f.attrs["dugdale_stress"]) == pytest.approx(s0, rel=1e-12)
         assert float(f.attrs["dugdale_range"]) == pytest.approx(GAMMA / s0, rel=1e-12)

@@ -1,0 +1,152 @@
+"""./run bench tabor: the JKR limit on a rough surface, measured with finite-range adhesion.
+
+On a rough cell there is no closed form for the JKR limit (zero range), and the two JKR-limit
+criteria converge with the grid to answers that differ. Maugis' finite-range model
+(-adh_criterion dugdale) has no singularity at the contact's edge: at a given range it converges
+with the grid to a well-defined continuum answer once its cohesive zones span several elements,
+and as the range shrinks it tends to the JKR limit. This bench measures that limit and sets the
+JKR-limit criteria against it.
+
+The surface and path are ./run bench convergence's configuration (--config, default resolved:
+the same band-limited surface on every grid, displacement control 0 -> d1 -> 0 -> -d1). The range
+is given as the Tabor-Maugis parameter of the smallest asperities, lambda = 2 s0 (R/(pi dgamma
+K^2))^(1/3), K = 4E*/3, R their mean tip radius (the estimate adhbem reports): s0 follows from
+lambda, the range is dgamma/s0. For each lambda of --lambdas the dugdale run is made on each grid
+of --n and extrapolated in the grid (first order, which the sphere shows: tests/solver/test_dugdale.py);
+then the extrapolated values are extrapolated in the range (f = f_JKR + c/lambda, from the two
+largest lambdas: Maugis' sphere approaches its JKR pull-off so). crack-closure and pohrt-popov run
+on the same grids, extrapolated in the grid as bench convergence does (their observed order).
+
+Per quantity (the largest tension, the energy dissipated over the loop, the force and the contact
+area fraction at the deepest state) the table gives every run's value, the extrapolations, and at
+the end each JKR-limit criterion's difference from the finite-range limit. Counts and CPU time
+per run are printed as the runs finish (stderr) and kept in --json.
+
+    ./run bench tabor [--config resolved|moderate|unresolved] [--n N1,N2] [--lambdas L1,L2,...]
+        [--np P] [--steps K] [--quick] [--json FILE] [-- OPTIONS]
+
+--quick: grids 48,96 and lambdas 0.5,1 (a smoke test of a few minutes; not the study). The zones at
+pull-off are about 0.4 a_c wide at lambda 1, 1.2 a_c at 0.5 and 0.13 a_c at 2 (a_c the asperities'
+JKR contact radius, 5, 10, 20 spacings of grids 64, 128, 256 in the resolved configuration): a
+lambda is only worth its runs on grids where that spans several elements.
+"""
+import argparse
+import importlib.util
+import json
+import math
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+spec = importlib.util.spec_from_file_location("bench_convergence", os.path.join(ROOT, "bench", "convergence.py"))
+convergence = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(convergence)
+
+KEYS = (("largest_tension", "largest tension (-min F)"),
+        ("loop_energy", "energy dissipated over the loop"),
+        ("force_deepest", "force at the deepest state"),
+        ("area_deepest", "contact area fraction at the deepest state"))
+
+
+def s0_for(lam, surface, gamma, E=convergence.E_STAR):
+    """The cohesive stress at which the smallest asperities' Tabor-Maugis parameter is lam."""
+    K = 4.0 * E / 3.0
+    return lam / (2.0 * (surface.tip_radius() / (math.pi * gamma * K * K)) ** (1.0 / 3.0))
+
+
+def first_order(values):
+    """Two grids, the spacing halved: f_inf = 2 f_2N - f_N (first order)."""
+    if len(values) < 2 or any(not math.isfinite(v) for v in values[-2:]):
+        return float("nan")
+    return 2.0 * values[-1] - values[-2]
+
+
+def grid_limit(values):
+    """The grid limit of a JKR-limit criterion: bench convergence's Richardson estimate with the
+    observed order from three grids, first order from two."""
+    if len(values) >= 3:
+        r = convergence.richardson(values)
+        if r["f_inf"] is not None:
+            return r["f_inf"]
+    return first_order(values)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--config", default="resolved", choices=("resolved", "moderate", "unresolved"))
+    ap.add_argument("--n", help="grids N1,N2[,N3] (each twice the last; default 64,128,256)")
+    ap.add_argument("--lambdas", help="Tabor-Maugis parameters of the smallest asperities (default 0.5,1,2)")
+    ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
+    ap.add_argument("--steps", type=int, default=25, help="steps per leg")
+    ap.add_argument("--quick", action="store_true", help="grids 48,96 and lambdas 0.5,1: a smoke test")
+    ap.add_argument("--json", help="write all numbers to this JSON file")
+    ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
+    a = ap.parse_args()
+    sizes = [int(v) for v in a.n.split(",")] if a.n else [48, 96] if a.quick else [64, 128, 256]
+    lambdas = [float(v) for v in a.lambdas.split(",")] if a.lambdas else [0.5, 1.0] if a.quick else [0.5, 1.0, 2.0]
+    if len(sizes) < 2 or any(m != 2 * n for n, m in zip(sizes, sizes[1:])):
+        ap.error("--n: two grids or more, each twice the last")
+    if len(lambdas) < 2 or any(not v > 0 for v in lambdas):
+        ap.error("--lambdas: two or more positive values")
+    s, gamma, what = convergence.configuration(a.config, sizes[0])
+    Z = {n: s.heights(n) for n in sizes}
+    zmax = float(Z[sizes[-1]].max())
+    d1 = float(convergence.np.quantile(zmax - Z[sizes[-1]], 0.25))
+    ac = s.jkr_radius(gamma)
+    print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what})")
+    print(f"# dgamma {gamma:.6g}, asperity tip radius {s.tip_radius():.4g}, a_c {ac:.4g} = "
+          + ", ".join(f"{ac * n / s.L:.3g}" for n in sizes) + f" spacings on grids {', '.join(map(str, sizes))}; d1 {d1:.5g}")
+    runs = {}
+
+    def measure(criterion, extra, tag):
+        out = {}
+        for n in sizes:
+            c, attrs, cpu, wall = convergence.run(s, n, zmax - Z[n], d1, gamma, criterion, a.steps, a.np, 3, list(extra) + a.extra, None, tag)
+            q, k = convergence.quantities(c, d1, s.L)
+            zone = float(max(c["cohesive_area"])) if "cohesive_area" in c else 0.0
+            out[n] = dict(quantities=q, run=k, cpu=cpu, wall=wall, largest_zone_area=zone)
+            print(f"[{tag} N = {n}: {k['states']} states, {k['set_updates']} set updates, {k['ksp']} KSP iterations, "
+                  f"{k['fft_pairs']} FFT pairs, CPU {cpu:.1f} s]", file=sys.stderr, flush=True)
+        return out
+
+    for lam in lambdas:
+        s0 = s0_for(lam, s, gamma)
+        runs[f"dugdale lambda {lam:g}"] = dict(s0=s0, range=gamma / s0, lam=lam,
+                                              grids=measure("dugdale", ["-adh_dugdale_stress", repr(s0)], f"dugdale-{lam:g}"))
+    for crit in ("crack-closure", "pohrt-popov"):
+        runs[crit] = dict(grids=measure(crit, [], crit))
+    # the table
+    width = 12
+    print(f"\n{'run':<26}" + "".join(f"{'N = ' + str(n):>{width}}" for n in sizes) + f"{'grid limit':>{width}}")
+    limits = {}
+    for key, label in KEYS:
+        print(f"\n{label}")
+        for name, r in runs.items():
+            vals = [r["grids"][n]["quantities"][key] for n in sizes]
+            lim = first_order(vals) if name.startswith("dugdale") else grid_limit(vals)
+            limits.setdefault(name, {})[key] = lim
+            print(f"  {name:<24}" + "".join(f"{v:>{width}.5g}" for v in vals) + f"{lim:>{width}.5g}")
+        big = sorted(lambdas)[-2:]
+        f1, f2 = (limits[f"dugdale lambda {v:g}"][key] for v in big)
+        # f = f_JKR + c / lambda through the two largest lambdas
+        jkr = (f2 * big[1] - f1 * big[0]) / (big[1] - big[0])
+        limits.setdefault("dugdale, zero range", {})[key] = jkr
+        print(f"  {'dugdale, zero range':<24}" + " " * (width * len(sizes)) + f"{jkr:>{width}.5g}")
+    print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|):")
+    for crit in ("crack-closure", "pohrt-popov"):
+        parts = []
+        for key, label in KEYS:
+            ref = limits["dugdale, zero range"][key]
+            parts.append(f"{key} {(limits[crit][key] - ref) / abs(ref):+.1%}" if ref else f"{key} n/a")
+        print(f"  {crit:<14} " + ", ".join(parts))
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(convergence.finite(dict(config=a.config, grids=sizes, lambdas=lambdas, gamma=gamma, d1=d1,
+                                              a_c=ac, tip_radius=s.tip_radius(), runs={k: dict(v, grids={str(n): g for n, g in v["grids"].items()})
+                                                                                       for k, v in runs.items()},
+                                              limits=limits)), f, indent=1)
+        print(f"\nwrote {a.json}")
+
+
+if __name__ == "__main__":
+    main()

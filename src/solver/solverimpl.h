@@ -77,6 +77,7 @@ typedef struct {
   PetscBool  local_solves; /* the default route re-solves the whole set after points let go (-adh_cascade_local inf), where the control allows it */
   PetscBool  cohesive;     /* it holds tractions off the contact set, in p there (a finite-range model's cohesive zone): the set's solves take their load */
   PetscErrorCode (*evaluate)(AdhSolver, PetscBool detach, PetscInt *removed, PetscReal *ratio);
+  PetscErrorCode (*begin)(AdhSolver); /* optional: a step (or a trial of one) begins its set updates */
   /* Optional, for the certified early stop of intermediate solves: the detach test of the exact
      solution p*, decided from the iterate xC (on the set) when every point's decision holds for
      any p within perr of it (perr bounds |p - p*| at every point). With the test in doubt,
@@ -324,6 +325,7 @@ static inline PetscErrorCode AdhSolverBeginSetUpdates_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(PetscArrayzero(s->left, s->nlocal));
   s->step_largest = s->npoints;
+  if (s->crops.begin) PetscCall(s->crops.begin(s));
   PetscFunctionReturn(0);
 }
 /* A criterion lets local point k go: it leaves the set, and its pressure (and its force-control

@@ -204,6 +204,34 @@ def test_results_attributes_and_restart_refusal(tmp_path):
     assert r.returncode == 0, r.stderr[-2000:]
 
 
+def test_an_unresolved_zone_ends_its_updates(tmp_path):
+    """Where the zone is narrower than an element (s0 above Sigma: lambda 2 on bench convergence's
+    resolved surface at 64^2) its points can switch in and out of the zone for ever; a point that
+    has left it three times in a step stays out, so each step ends (it ran into -adh_max_outer
+    before), and -info says how many points were kept out."""
+    serial_only()
+    import importlib.util
+    from common import ROOT
+    spec = importlib.util.spec_from_file_location("bench_convergence", f"{ROOT}/bench/convergence.py")
+    convergence = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(convergence)
+    surface, gamma, _ = convergence.configuration("resolved", 64)
+    z = surface.heights(64)
+    h = np.ascontiguousarray(z.max() - z)
+    np.save(tmp_path / "h.npy", h)
+    R = surface.tip_radius()
+    s0 = 2.0 / (2.0 * (R / (math.pi * gamma * K * K)) ** (1 / 3))  # lambda 2 at the asperities' tips
+    r = subprocess.run([EXE, "-adh_n", "64", "-adh_size", "64", "-adh_boundary", "periodic", "-adh_indenter", "file",
+                        "-adh_topography", str(tmp_path / "h.npy"), "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma),
+                        "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_start", "adhesive",
+                        "-adh_path", f"0,{float(np.quantile(h, 0.25))!r}", "-adh_steps", "8", "-adh_max_outer", "1000",
+                        "-info", ":adhsolver"], capture_output=True, text=True, timeout=120)
+    kept = r.stdout.count("kept out of the zone")
+    say(f"\ndugdale, unresolved zone on a rough cell: {kept} set updates ended with points kept out")
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert kept > 0
+
+
 @pytest.mark.parametrize("args, says", [
     ([], "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress"),
     (["-adh_dugdale_stress", "-1"], "-adh_dugdale_stress must be > 0"),

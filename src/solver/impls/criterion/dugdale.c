@@ -24,7 +24,10 @@
    include them, and the set's solves take their load (one compliance multiply more per solve). The zone is updated
    with the contact: a set update lets go the contact points whose tension exceeds s0 and moves the zone's edge to
    where the gap is the range, and the set is solved again, until nothing changes; then the points that penetrate
-   join (the attach rule penetration, its default). The -adh_critical_stress option and the certified early stop do
+   join (the attach rule penetration, its default). A point that has left the zone three times in one step stays out
+   of it for the rest of the step, so that the updates end: the zone's points switch all at once, and where the zone
+   is narrower than an element (s0 well above Sigma) they can otherwise flip back and forth for ever; such a state
+   is not quite an equilibrium of the model, and -info :adhsolver says how many points were kept out. The -adh_critical_stress option and the certified early stop do
    not apply.
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
@@ -32,8 +35,16 @@ M*/
 #include "solver/solverimpl.h"
 
 typedef struct {
-  PetscReal s0; /* -adh_dugdale_stress: the cohesive stress */
+  PetscReal s0;     /* -adh_dugdale_stress: the cohesive stress */
+  char     *left;   /* how often each local point left the zone in the current step (ADH_ZONE_EXITS: it stays out) */
+  PetscInt  nleft;
 } Dugdale;
+
+/* A point that has left the zone this often in one step stays out of it for the rest of the step:
+   the zone's points switch all at once, and where the zone is narrower than an element they can
+   flip back and forth for ever; a point that leaves and comes back once or twice is the usual
+   settling of the zone's edge. */
+#define ADH_ZONE_EXITS 3
 
 /* The cohesive stress and range of local point k: s0 and dgamma/s0 where the work of adhesion is
    positive (and the stage is adhesive), none elsewhere. */
@@ -55,7 +66,7 @@ static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *
   PetscScalar       *pa, *xa = NULL;
   const PetscScalar *ga, *gamma = NULL;
   PetscReal          r     = 0.0;
-  PetscInt           count = 0;
+  PetscInt           count = 0, kept = 0;
 
   PetscFunctionBegin;
   if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
@@ -89,8 +100,10 @@ static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *
       PetscReal s0, range, want;
       if (s->in_set[k]) continue;
       Cohesion(s, dd, gamma, k, &s0, &range);
-      want = s0 > 0 && PetscRealPart(ga[k]) <= range ? -s0 : 0.0;
+      want = s0 > 0 && PetscRealPart(ga[k]) <= range && dd->left[k] < ADH_ZONE_EXITS ? -s0 : 0.0;
+      if (s0 > 0 && PetscRealPart(ga[k]) <= range && want == 0.0) kept++;
       if (PetscRealPart(pa[k]) != want) {
+        if (want == 0.0) dd->left[k]++; /* after ADH_ZONE_EXITS it stays out for the rest of the step: the updates end */
         pa[k] = want;
         count++;
       }
@@ -102,6 +115,25 @@ static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *
   if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
   if (removed) PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
   if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
+  if (detach && !*removed) {
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kept, 1, MPIU_INT, MPI_SUM, s->comm));
+    if (kept) PetscCall(PetscInfo(s, "dugdale: %" PetscInt_FMT " points within the range kept out of the zone after %d exits in this step (the zone is not resolved)\n", kept, ADH_ZONE_EXITS));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A step begins: no point has left the zone yet. */
+static PetscErrorCode Begin_Dugdale(AdhSolver s)
+{
+  Dugdale *dd = (Dugdale *)s->crops.data;
+
+  PetscFunctionBegin;
+  if (dd->nleft != s->nlocal) {
+    PetscCall(PetscFree(dd->left));
+    PetscCall(PetscMalloc1(s->nlocal + 1, &dd->left));
+    dd->nleft = s->nlocal;
+  }
+  PetscCall(PetscArrayzero(dd->left, s->nlocal));
   PetscFunctionReturn(0);
 }
 
@@ -122,6 +154,7 @@ static PetscErrorCode SetUp_Dugdale(AdhSolver s)
   PetscFunctionBegin;
   PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion dugdale, whose cohesive stress is -adh_dugdale_stress");
+  PetscCall(Begin_Dugdale(s));
   PetscCheck(s->attach == ADH_ATTACH_PENETRATION, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach %s does not apply to -adh_criterion dugdale: a point joins the contact when it penetrates (-adh_attach penetration)", AdhAttaches[s->attach]);
   PetscFunctionReturn(0);
 }
@@ -172,7 +205,10 @@ static PetscErrorCode Shape_Dugdale(AdhSolver s, PetscInt *n, AdhShapingOption s
 
 static PetscErrorCode Destroy_Dugdale(AdhSolver s)
 {
+  Dugdale *dd = (Dugdale *)s->crops.data;
+
   PetscFunctionBegin;
+  PetscCall(PetscFree(dd->left));
   PetscCall(PetscFree(s->crops.data));
   PetscFunctionReturn(0);
 }
@@ -187,6 +223,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
   s->crops.attach              = ADH_ATTACH_PENETRATION;
   s->crops.cohesive            = PETSC_TRUE;
   s->crops.evaluate            = Evaluate_Dugdale;
+  s->crops.begin               = Begin_Dugdale;
   s->crops.base.setfromoptions = SetFromOptions_Dugdale;
   s->crops.base.view           = View_Dugdale;
   s->crops.base.setup          = SetUp_Dugdale;

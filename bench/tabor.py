@@ -96,6 +96,15 @@ def main():
     print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what})")
     print(f"# dgamma {gamma:.6g}, asperity tip radius {s.tip_radius():.4g}, a_c {ac:.4g} = "
           + ", ".join(f"{ac * n / s.L:.3g}" for n in sizes) + f" spacings on grids {', '.join(map(str, sizes))}; d1 {d1:.5g}")
+    sys.path.insert(0, os.path.join(ROOT, "python"))
+    from adhbem.theory import maugis_pulloff, maugis_sphere
+    K = 4.0 * convergence.E_STAR / 3.0
+    for lam in lambdas:  # Maugis' sphere of the asperities' tip radius: the zone's width at its pull-off
+        _, A, _ = maugis_pulloff(lam)
+        m = maugis_sphere(lam, [A])[2][0]
+        width = (m - 1) * A * (math.pi * gamma * s.tip_radius() ** 2 / K) ** (1 / 3)
+        print(f"# lambda {lam:g}: s0 {s0_for(lam, s, gamma):.5g}, range {gamma / s0_for(lam, s, gamma):.4g}; an asperity's zone at its pull-off "
+              f"about " + ", ".join(f"{width * n / s.L:.3g}" for n in sizes) + " spacings wide (resolved from about 10)")
     runs = {}
 
     def measure(criterion, extra, tag):

@@ -200,9 +200,10 @@ typedef const char *AdhControlType;
 PETSC_EXTERN PetscErrorCode AdhControlRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetControlType(AdhSolver, AdhControlType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetControlType(AdhSolver, AdhControlType *);
-/* Detachment criterion, a registered type: "pohrt-popov" (the paper's p < -Sigma) or
+/* Detachment criterion, a registered type: "pohrt-popov" (the paper's p < -Sigma),
    "crack-closure" (the edge's energy release rate by virtual crack closure, G > dgamma, which does
-   not depend on the edge's direction on the grid). */
+   not depend on the edge's direction on the grid), both the JKR limit, or "dugdale" (finite range:
+   Maugis' cohesive zone). */
 typedef const char *AdhCriterionType;
 #define ADHCRITERIONPOHRTPOPOV   "pohrt-popov"
 #define ADHCRITERIONCRACKCLOSURE "crack-closure"

@@ -5,7 +5,8 @@
 
    pohrt-popov:   the paper's rule, p < -Sigma (impls/criterion/pohrtpopov.c).
    crack-closure: the contact edge's energy release rate by virtual crack closure, averaged along
-                  the edge, against dgamma (impls/criterion/crackclosure/). */
+                  the edge, against dgamma (impls/criterion/crackclosure/).
+   dugdale:       finite range, Maugis' cohesive zone (impls/criterion/dugdale.c). */
 #include "solver/solverimpl.h"
 
 AdhRegistry AdhCriteria = {"-adh_criterion", "detachment criterion", NULL};
@@ -27,7 +28,7 @@ AdhRegistry AdhCriteria = {"-adh_criterion", "detachment criterion", NULL};
   Level: advanced
 
   Notes:
-  The built-in types, `ADHCRITERIONCRACKCLOSURE` and `ADHCRITERIONPOHRTPOPOV`, are registered when the package is
+  The built-in types, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV` and `ADHCRITERIONDUGDALE`, are registered when the package is
   initialized, which this function does first. Registering a name again replaces its function.
 
   A new type is one file (or folder) in src/solver/impls/criterion/ and its registration line in
@@ -54,10 +55,11 @@ PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(
 + s    - the solver
 - type - the criterion's name: `ADHCRITERIONCRACKCLOSURE` (the default: the contact edge's energy release rate by
          virtual crack closure, G > dgamma, which does not depend on the edge's direction on the grid),
-         `ADHCRITERIONPOHRTPOPOV` (the paper's p < -Sigma), or one registered with `AdhCriterionRegister()`
+         `ADHCRITERIONPOHRTPOPOV` (the paper's p < -Sigma), `ADHCRITERIONDUGDALE` (finite range: Maugis' cohesive zone),
+         or one registered with `AdhCriterionRegister()`
 
   Options Database Key:
-. -adh_criterion <crack-closure,pohrt-popov> - the criterion
+. -adh_criterion <crack-closure,pohrt-popov,dugdale> - the criterion
 
   Level: intermediate
 
@@ -65,11 +67,12 @@ PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(
   The criterion cannot change after `AdhSolverSetUp()`; setting the type the solver already has does nothing. An
   unknown name is an error that lists the registered ones.
 
-  The criterion chooses defaults at set-up: the attach rule griffith (crack-closure's mirror) with crack-closure and
-  reach otherwise (griffith is refused with any other criterion), and -adh_cascade_local inf (the whole grid) with
-  crack-closure under displacement control, 0 otherwise.
+  The criterion chooses defaults at set-up: the attach rule griffith (crack-closure's mirror) with crack-closure, reach
+  with pohrt-popov and penetration with dugdale (griffith is refused with any criterion but crack-closure), and
+  -adh_cascade_local inf (the whole grid) with crack-closure under displacement control, 0 otherwise.
 
-.seealso: `AdhSolverGetCriterionType()`, `AdhCriterionRegister()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
+.seealso: `AdhSolverGetCriterionType()`, `AdhCriterionRegister()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`,
+          `ADHCRITERIONDUGDALE`
 @*/
 PetscErrorCode AdhSolverSetCriterionType(AdhSolver s, AdhCriterionType type)
 {

@@ -50,7 +50,7 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
 . -adh_indenter <sphere,punch,cone,rough,file,array> - the indenter; -adh_radius, -adh_topography FILE, -adh_hurst, ...
 . -adh_gamma <dgamma>                                - the work of adhesion (0: non-adhesive)
 . -adh_gamma_field <FILE>                            - a work of adhesion field dgamma(x,y), .npy or HDF5, read at set-up
-. -adh_criterion <crack-closure,pohrt-popov>         - the detachment criterion, `AdhSolverSetCriterionType()`
+. -adh_criterion <crack-closure,pohrt-popov,dugdale> - the detachment criterion, `AdhSolverSetCriterionType()`
 . -adh_critical_stress <0>                           - a fixed critical stress replacing Sigma (0: Sigma)
 . -adh_boundary <free,periodic>                      - an isolated contact or a periodic cell
 . -adh_control <displacement,force>                  - the load control, `AdhSolverSetControlType()`
@@ -116,7 +116,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
-  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges)", "AdhSolverSetCriterionType", AdhCriteria.list, s->criterion_type, criterion, sizeof(criterion), &set));
+  PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges), both the JKR limit (zero range); or dugdale (finite range: Maugis' cohesive zone, -adh_dugdale_stress)", "AdhSolverSetCriterionType", AdhCriteria.list, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
   PetscCall(PetscOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();

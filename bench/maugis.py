@@ -1,0 +1,98 @@
+"""./run bench maugis: -adh_criterion dugdale on the sphere against Maugis' closed form, from near
+DMT to near JKR.
+
+For each Tabor-Maugis parameter of --lambdas, a sphere (E* = R = 1) is pressed and pulled under
+displacement control on grids sized so that the cohesive zone at pull-off spans --widths elements
+(Maugis' (c - a) at the pull-off: the grid follows from it, the free-boundary domain holds the
+contact with its zone twice over). The largest tension is compared with Maugis' pull-off force
+(adhbem.theory), and the grids' values are extrapolated at first order (the order the sphere
+shows: the zone's edge is where an element's centre lies within the range). Pull-off runs from
+2 pi dgamma R (DMT, lambda -> 0) to 1.5 pi dgamma R (JKR, large lambda); a zone narrower than the
+contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact radius, at 10
+about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
+
+    ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P]
+
+The table: lambda, the grid, the zone's width in elements (from the run's resolution report), the
+largest tension over Maugis', the first-order extrapolation over Maugis', counts and CPU time.
+"""
+import argparse
+import math
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
+from adhbem.theory import maugis_pulloff, maugis_sphere, tabor_lambda  # noqa: E402  (numpy only)
+
+GAMMA = 0.004655
+K = 4.0 / 3.0
+
+
+def case(lam, width):
+    """s0, the grid N and the domain size L at which the zone at pull-off spans `width` elements,
+    and Maugis' pull-off force, its contact radius and zone width."""
+    P, A, D = maugis_pulloff(lam)
+    m = float(maugis_sphere(lam, [A])[2][0])
+    ascale = (math.pi * GAMMA / K) ** (1 / 3)
+    a, zone = A * ascale, (m - 1) * A * ascale
+    h = zone / width
+    L = 4.0 * m * a  # the contact with its zone, twice over
+    N = 2 * math.ceil(L / h / 2)
+    s0 = lam / tabor_lambda(1.0, GAMMA)
+    dscale = (math.pi ** 2 * GAMMA ** 2 / K ** 2) ** (1 / 3)
+    return s0, N, N * h, -P * math.pi * GAMMA, a, zone, D * dscale
+
+
+def run(lam, width, steps, np_):
+    s0, N, L, F, a, zone, d_pull = case(lam, width)
+    d0 = 0.5 * a * a  # a preload of about the pull-off contact's Hertz indentation
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "m.h5")
+        cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE, "-adh_n", str(N), "-adh_size", repr(L), "-adh_gamma", repr(GAMMA),
+               "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_path", f"{d0!r},{2 * d_pull - 0.2 * d0!r}",
+               "-adh_steps", str(steps), "-adh_output", out, "-adh_progress", "0"]
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        if p.returncode:
+            sys.exit(f"bench maugis: lambda {lam} N {N} failed:\n{p.stderr[-2000:]}")
+        import h5py
+        with h5py.File(out, "r") as f:
+            tension = -float(f["curve/force"][()].min())
+            width_run = float(f.attrs.get("pull_off_cohesive_width", float("nan")))
+            ksp, ffts = int(f["curve/ksp_iterations"][()].sum()), int(f["curve/fft_pairs"][()].sum())
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--lambdas", default="0.3,1,3")
+    ap.add_argument("--widths", default="5,10", help="the zone's width at pull-off in elements, one grid each (each twice the last)")
+    ap.add_argument("--steps", type=int, default=80, help="steps of the path (preload to beyond the pull-off)")
+    ap.add_argument("--np", type=int, default=1)
+    a = ap.parse_args()
+    lambdas = [float(v) for v in a.lambdas.split(",")]
+    widths = [float(v) for v in a.widths.split(",")]
+    print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
+    print(f"{'lambda':>7} {'Maugis P':>9} {'N':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'KSP':>8} {'FFT pairs':>10} {'CPU s':>7}")
+    for lam in lambdas:
+        rows = [run(lam, w, a.steps, a.np) for w in widths]
+        P = rows[0]["exact"] / (math.pi * GAMMA)
+        for k, r in enumerate(rows):
+            extra = ""
+            if k > 0:  # first order in the spacing, whose ratio is the widths' (the domain is the same)
+                q = widths[k] / widths[k - 1]
+                f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
+                extra = f"{f_inf / r['exact']:.4f}"
+            print(f"{lam:>7g} {P:>9.4f} {r['N']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>8} {r['ffts']:>10} {r['cpu']:>7.1f}",
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()

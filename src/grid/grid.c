@@ -4,7 +4,7 @@
 /*@
   AdhGridCreate - Creates a grid of Nx x Ny rectangular elements, to be distributed by whole rows over the ranks of a communicator
 
-  Logically Collective
+  Collective
 
   Input Parameter:
 . comm - the MPI communicator
@@ -16,8 +16,8 @@
   The grid starts as 64 x 64 elements on a 1 x 1 domain: set its sizes with `AdhGridSetSizes()` or `AdhGridSetFromOptions()`,
   then call `AdhGridSetUp()`, which distributes the rows. It initialises the package (`AdhInitializePackage()`) if needed.
 
-  Nothing is communicated here, but every rank of comm must call it, since the later calls on the grid are collective. The grid
-  is a PETSc object of class "AdhGrid" (`ADH_GRID_CLASSID`): it can be named, referenced (`PetscObjectReference()`) and
+  Every rank of comm must call it: the PETSc object's header duplicates the communicator, and the later calls on the grid
+  are collective. The grid is a PETSc object of class "AdhGrid" (`ADH_GRID_CLASSID`): it can be named, referenced (`PetscObjectReference()`) and
   viewed like any, and -info :adhgrid shows its messages. It is not a `DM`: its layout is FFTW-MPI's slabs of whole rows,
   and what it serves (row star forests of any width, the transforms its operators share) is not what a `DMDA` offers,
   whose ghost maps would cost about 20 bytes a point that nothing here uses. It also keeps comm as it is, for FFTW-MPI:
@@ -101,13 +101,14 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
 @*/
 PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
 {
-  PetscInt  n[2] = {g->Nx, g->Ny}, nn = 2;
-  PetscReal L[2] = {g->Lx, g->Ly};
+  PetscInt  n[2], nn = 2;
+  PetscReal L[2];
   PetscInt  nLi = 2;
   PetscBool set;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  n[0] = g->Nx, n[1] = g->Ny, L[0] = g->Lx, L[1] = g->Ly;
   PetscOptionsBegin(g->comm, g->prefix, "adhbem grid", "AdhGrid");
   PetscCall(PetscOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
   if (set) {

@@ -24,7 +24,7 @@ struct _p_AdhGrid {
   PetscReal    hx, hy;         /* element sizes Lx/Nx, Ly/Ny */
   PetscInt     ys, ym;         /* this rank's rows: j in [ys, ys + ym), all i */
   PetscBool    setup;
-  const char  *prefix;         /* options prefix (borrowed), also used by the compliance */
+  const char  *prefix;         /* options prefix: the header's (PetscObjectSetOptionsPrefix), also used by the compliance */
   PetscInt     fftw_effort;    /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
   PetscReal    fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
   AdhTransform transforms[2];  /* physical size and zero-padded (2Ny x 2Nx), made on first use */

@@ -237,6 +237,8 @@ def test_an_unresolved_zone_ends_its_updates(tmp_path):
     (["-adh_dugdale_stress", "-1"], "-adh_dugdale_stress must be > 0"),
     (["-adh_dugdale_stress", "0.1", "-adh_attach", "reach"], "-adh_attach reach does not apply to -adh_criterion dugdale"),
     (["-adh_dugdale_stress", "0.1", "-adh_critical_stress", "0.5"], "-adh_critical_stress does not apply"),
+    (["-adh_dugdale_stress", "0.1", "-adh_cascade_apart", "4"], "-adh_cascade_apart does not apply"),
+    (["-adh_dugdale_stress", "0.1", "-adh_cascade_local", "3"], "-adh_cascade_local does not apply"),
 ])
 def test_bad_input_is_one_line(args, says):
     serial_only()

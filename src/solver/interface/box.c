@@ -38,7 +38,8 @@ static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box
   b->bx = bx;
   b->by = by;
   PetscCall(AdhGridCreate(s->comm, &b->grid));
-  b->grid->prefix = s->prefix;
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)b->grid, s->prefix));
+  b->grid->prefix = ((PetscObject)b->grid)->prefix;
   PetscCall(AdhGridSetSizes(b->grid, bx, by, bx * s->grid->hx, by * s->grid->hy));
   /* On several ranks FFTW's measuring planner cannot be time-limited (see compliance.c), and
      unlimited measuring of every window costs more than it saves. */

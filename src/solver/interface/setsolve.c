@@ -128,7 +128,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   s->certified_attach = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && s->lambda_set <= 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The whole periodic cell is in contact at d = %g: under displacement control the force is undetermined there (d must stay below the mean of the indenter profile, %g); use -adh_control force", (double)s->d, (double)s->mean_h);
-  if (s->crops.cohesive && x == s->p && s->adhesive) PetscCall(OffSetLoad(s, &wa));
+  if (s->crops.cohesive && x == s->p) PetscCall(OffSetLoad(s, &wa));
   /* The set's points are local to each rank, so restriction is a local gather. */
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));

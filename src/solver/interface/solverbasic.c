@@ -105,7 +105,8 @@ PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver s, const char prefix[])
   PetscCall(PetscFree(s->prefix));
   PetscCall(PetscStrallocpy(prefix, &s->prefix));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)s, prefix)); /* -adh_view through PetscObjectViewFromOptions */
-  s->grid->prefix = s->prefix;
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)s->grid, prefix)); /* the grid's own copy: it may outlive the solver */
+  s->grid->prefix = ((PetscObject)s->grid)->prefix;
   PetscFunctionReturn(0);
 }
 

@@ -17,6 +17,7 @@ PetscErrorCode AdhSolverSetType_Private(AdhSolver s, AdhRegistry *reg, char curr
   PetscCheck(!fixed || !s->setup, s->comm, PETSC_ERR_ORDER, "%s: the %s cannot change after set-up", reg->option, reg->what);
   if (ops->destroy) PetscCall(ops->destroy(s));
   PetscCall(PetscMemzero(ops, size)); /* the kind's ops: the AdhTypeOps first, then the kind's own and its data */
+  current[0] = 0;                      /* no type, should its create fail */
   PetscCall(create(s));
   PetscCall(PetscStrncpy(current, type, 64));
   if (s->setup && ops->setup) PetscCall(ops->setup(s));

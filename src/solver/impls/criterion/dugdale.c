@@ -27,8 +27,8 @@
    join (the attach rule penetration, its default). A point that has left the zone three times in one step stays out
    of it for the rest of the step, so that the updates end: the zone's points switch all at once, and where the zone
    is narrower than an element (s0 well above Sigma) they can otherwise flip back and forth for ever; such a state
-   is not quite an equilibrium of the model, and -info :adhsolver says how many points were kept out. The -adh_critical_stress option and the certified early stop do
-   not apply.
+   is not quite an equilibrium of the model, and -info :adhsolver says how many points were kept out. -adh_critical_stress, -adh_cascade_apart, -adh_cascade_local and
+   the certified early stop do not apply.
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
 M*/
@@ -109,16 +109,17 @@ static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *
       }
     }
     PetscCall(VecRestoreArrayRead(s->g, &ga));
-    s->gap_current = (PetscBool)(count == 0); /* the attach test that follows a test that changed nothing takes this gap */
   }
   PetscCall(VecRestoreArray(s->p, &pa));
   if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
-  if (removed) PetscCall(MPIU_Allreduce(&count, removed, 1, MPIU_INT, MPI_SUM, s->comm));
   if (ratio) PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
-  if (detach && !*removed) {
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kept, 1, MPIU_INT, MPI_SUM, s->comm));
-    if (kept) PetscCall(PetscInfo(s, "dugdale: %" PetscInt_FMT " points within the range kept out of the zone after %d exits in this step (the zone is not resolved)\n", kept, ADH_ZONE_EXITS));
-  }
+  if (detach) {
+    PetscInt total[2] = {count, kept};
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, total, 2, MPIU_INT, MPI_SUM, s->comm));
+    if (removed) *removed = total[0];
+    s->gap_current = (PetscBool)(total[0] == 0); /* nothing changed on any rank: the attach test that follows takes this gap */
+    if (!total[0] && total[1]) PetscCall(PetscInfo(s, "dugdale: %" PetscInt_FMT " points within the range kept out of the zone after %d exits in this step (the zone is not resolved)\n", total[1], ADH_ZONE_EXITS));
+  } else if (removed) *removed = 0;
   PetscFunctionReturn(0);
 }
 
@@ -155,6 +156,9 @@ static PetscErrorCode SetUp_Dugdale(AdhSolver s)
   PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion dugdale, whose cohesive stress is -adh_dugdale_stress");
   PetscCall(Begin_Dugdale(s));
+  /* their marks zero the pressure off the set, and the local solves leave out the zone's load */
+  PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion dugdale");
+  PetscCheck(!(s->cascade_local > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local does not apply to -adh_criterion dugdale");
   PetscCheck(s->attach == ADH_ATTACH_PENETRATION, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach %s does not apply to -adh_criterion dugdale: a point joins the contact when it penetrates (-adh_attach penetration)", AdhAttaches[s->attach]);
   PetscFunctionReturn(0);
 }
@@ -189,6 +193,16 @@ static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
       PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "tabor_lambda", PETSC_REAL, &lambda));
     }
   }
+  PetscFunctionReturn(0);
+}
+
+/* What it adds to the memory model: the tractions off the set and their load (two grid vectors,
+   made at the first solve with a zone) and a byte a point for the zone's exits. */
+static PetscErrorCode Memory_Dugdale(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
+{
+  PetscFunctionBegin;
+  *per_point = 2.0 * sizeof(PetscScalar) + 1.0;
+  *per_rank  = 0.0;
   PetscFunctionReturn(0);
 }
 
@@ -228,6 +242,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
   s->crops.base.view           = View_Dugdale;
   s->crops.base.setup          = SetUp_Dugdale;
   s->crops.base.shape          = Shape_Dugdale;
+  s->crops.base.memory         = Memory_Dugdale;
   s->crops.base.destroy        = Destroy_Dugdale;
   PetscFunctionReturn(0);
 }

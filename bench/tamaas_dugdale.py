@@ -88,8 +88,8 @@ def main():
           f"{a.steps} steps a leg")
     with tempfile.TemporaryDirectory() as tmp:
         zfile, hfile, out = (os.path.join(tmp, f) for f in ("z.npy", "h.npy", "a.h5"))
-        np.save(zfile, z)
-        np.save(hfile, h)
+        np.save(zfile, np.ascontiguousarray(z))
+        np.save(hfile, np.ascontiguousarray(h))
         cmd = [convergence.EXE, "-adh_n", str(a.n), "-adh_size", repr(s.L), "-adh_boundary", "periodic",
                "-adh_indenter", "file", "-adh_topography", hfile, "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma),
                "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_start", "adhesive",

@@ -48,10 +48,14 @@ KEYS = (("largest_tension", "largest tension (-min F)"),
         ("area_deepest", "contact area fraction at the deepest state"))
 
 
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from adhbem.theory import maugis_pulloff, maugis_sphere, tabor_lambda  # noqa: E402  (numpy only)
+
+
 def s0_for(lam, surface, gamma, E=convergence.E_STAR):
-    """The cohesive stress at which the smallest asperities' Tabor-Maugis parameter is lam."""
-    K = 4.0 * E / 3.0
-    return lam / (2.0 * (surface.tip_radius() / (math.pi * gamma * K * K)) ** (1.0 / 3.0))
+    """The cohesive stress at which the smallest asperities' Tabor-Maugis parameter is lam
+    (lambda is linear in s0)."""
+    return lam / tabor_lambda(1.0, gamma, surface.tip_radius(), E)
 
 
 def first_order(values):
@@ -96,8 +100,6 @@ def main():
     print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what})")
     print(f"# dgamma {gamma:.6g}, asperity tip radius {s.tip_radius():.4g}, a_c {ac:.4g} = "
           + ", ".join(f"{ac * n / s.L:.3g}" for n in sizes) + f" spacings on grids {', '.join(map(str, sizes))}; d1 {d1:.5g}")
-    sys.path.insert(0, os.path.join(ROOT, "python"))
-    from adhbem.theory import maugis_pulloff, maugis_sphere
     K = 4.0 * convergence.E_STAR / 3.0
     for lam in lambdas:  # Maugis' sphere of the asperities' tip radius: the zone's width at its pull-off
         _, A, _ = maugis_pulloff(lam)

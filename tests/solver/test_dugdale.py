@@ -219,8 +219,7 @@ def test_an_unresolved_zone_ends_its_updates(tmp_path):
     z = surface.heights(64)
     h = np.ascontiguousarray(z.max() - z)
     np.save(tmp_path / "h.npy", h)
-    R = surface.tip_radius()
-    s0 = 2.0 / (2.0 * (R / (math.pi * gamma * K * K)) ** (1 / 3))  # lambda 2 at the asperities' tips
+    s0 = 2.0 / tabor_lambda(1.0, gamma, surface.tip_radius())  # lambda 2 at the asperities' tips
     r = subprocess.run([EXE, "-adh_n", "64", "-adh_size", "64", "-adh_boundary", "periodic", "-adh_indenter", "file",
                         "-adh_topography", str(tmp_path / "h.npy"), "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma),
                         "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_start", "adhesive",

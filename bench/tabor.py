@@ -22,7 +22,7 @@ area fraction at the deepest state) the table gives every run's value, the extra
 the end each JKR-limit criterion's difference from the finite-range limit. Counts and CPU time
 per run are printed as the runs finish (stderr) and kept in --json.
 
-    ./run bench tabor [--config resolved|moderate|unresolved] [--n N1,N2] [--lambdas L1,L2,...]
+    ./run bench tabor [--config resolved|moderate|unresolved] [--hurst H] [--seed S] [--n N1,N2] [--lambdas L1,L2,...]
         [--np P] [--steps K] [--quick] [--json FILE] [-- OPTIONS]
 
 --quick: grids 48,96 and lambdas 0.5,1 (a smoke test of a few minutes; not the study). The zones at
@@ -78,6 +78,8 @@ def grid_limit(values):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--config", default="resolved", choices=("resolved", "moderate", "unresolved"))
+    ap.add_argument("--hurst", type=float, default=0.8, help="the surface's Hurst exponent (default 0.8)")
+    ap.add_argument("--seed", type=int, default=1, help="the surface's random seed (default 1)")
     ap.add_argument("--n", help="grids N1,N2[,N3] (each twice the last; default 64,128,256)")
     ap.add_argument("--lambdas", help="Tabor-Maugis parameters of the smallest asperities (default 0.5,1,2)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
@@ -92,12 +94,12 @@ def main():
         ap.error("--n: two grids or more, each twice the last")
     if len(lambdas) < 2 or any(not v > 0 for v in lambdas):
         ap.error("--lambdas: two or more positive values")
-    s, gamma, what = convergence.configuration(a.config, sizes[0])
+    s, gamma, what = convergence.configuration(a.config, sizes[0], hurst=a.hurst, seed=a.seed)
     Z = {n: s.heights(n) for n in sizes}
     zmax = float(Z[sizes[-1]].max())
     d1 = float(convergence.np.quantile(zmax - Z[sizes[-1]], 0.25))
     ac = s.jkr_radius(gamma)
-    print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what})")
+    print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what}; Hurst {a.hurst:g}, seed {a.seed})")
     print(f"# dgamma {gamma:.6g}, asperity tip radius {s.tip_radius():.4g}, a_c {ac:.4g} = "
           + ", ".join(f"{ac * n / s.L:.3g}" for n in sizes) + f" spacings on grids {', '.join(map(str, sizes))}; d1 {d1:.5g}")
     K = 4.0 * convergence.E_STAR / 3.0
@@ -152,7 +154,7 @@ def main():
         print(f"  {crit:<14} " + ", ".join(parts))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(convergence.finite(dict(config=a.config, grids=sizes, lambdas=lambdas, gamma=gamma, d1=d1,
+            json.dump(convergence.finite(dict(config=a.config, hurst=a.hurst, seed=a.seed, grids=sizes, lambdas=lambdas, gamma=gamma, d1=d1,
                                               a_c=ac, tip_radius=s.tip_radius(), runs={k: dict(v, grids={str(n): g for n, g in v["grids"].items()})
                                                                                        for k, v in runs.items()},
                                               limits=limits)), f, indent=1)

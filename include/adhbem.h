@@ -7,12 +7,16 @@
 #include <petscdmda.h>
 #include <petscksp.h>
 #include <petscsf.h>
+#include "adhbemversion.h"
 
 PETSC_EXTERN PetscClassId ADH_CLASSID;
 PETSC_EXTERN PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits, ADH_LocalSolve;
 
 PETSC_EXTERN PetscErrorCode AdhInitializePackage(void);
 PETSC_EXTERN PetscErrorCode AdhUseOneBLASThread(void);
+/* ---- sys/version.c: "adhbem 0.1.0 (PETSc 3.18.5)", and the numbers (adhbemversion.h has the macros) ---- */
+PETSC_EXTERN PetscErrorCode AdhGetVersion(char version[], size_t len);
+PETSC_EXTERN PetscErrorCode AdhGetVersionNumber(PetscInt *major, PetscInt *minor, PetscInt *patch);
 
 /* ---- grid/influence.c: closed-form element integrals (docs/physics.md) ---- */
 

@@ -76,6 +76,25 @@ static int CheckOptionsFiles(int argc, char **argv)
   return 0;
 }
 
+/* --version or -version: adhbem's version, the PETSc it runs with and the one it was built against, printed
+   by the first rank, before PETSc starts (PETSc's own -version would add its banner and go on). */
+static int PrintVersion(int argc, char **argv)
+{
+  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+  char        version[256];
+
+  if (!rank) rank = getenv("PMI_RANK");
+  if (!rank) rank = getenv("PMIX_RANK");
+  for (int k = 1; k < argc; k++) {
+    if (strcmp(argv[k], "--version") && strcmp(argv[k], "-version")) continue;
+    if (rank && strcmp(rank, "0")) return 1;
+    if (AdhGetVersion(version, sizeof(version))) return 1;
+    printf("%s\nbuilt against PETSc %d.%d.%d with %d-bit indices\n", version, PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR, PETSC_VERSION_SUBMINOR, (int)(8 * sizeof(PetscInt)));
+    return 1;
+  }
+  return 0;
+}
+
 /* PETSc's KSP and PC options without adhbem's prefix (-ksp_rtol) do nothing: the solver's KSP
    reads -adh_ksp_*. Nothing else in the executable reads them. */
 static PetscErrorCode CheckUnprefixedOptions(void)
@@ -159,20 +178,22 @@ int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
   PetscBool      traceback = PETSC_FALSE;
-  AdhSolver      solver;
+  AdhSolver      solver = NULL;
 
+  if (PrintVersion(argc, argv)) return 0;
   AvoidStaleLocks();
   if (CheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));
   PetscCall(AdhUseOneBLASThread());
-  PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
-  ierr = Run(solver);
+  /* creating the solver can fail too (the library finds another PETSc than it was built against) */
+  ierr = AdhSolverCreate(PETSC_COMM_WORLD, &solver);
+  if (!ierr) ierr = Run(solver);
   if (ierr && traceback) return (int)ierr;
   /* an error every rank saw ends the run cleanly; one that only some ranks saw must abort the others */
   if (ierr && !error_on_every_rank) MPI_Abort(PETSC_COMM_WORLD, 1);
-  PetscCall(AdhSolverDestroy(&solver));
+  if (solver) PetscCall(AdhSolverDestroy(&solver));
   if (!traceback) PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFinalize());
   return ierr ? 1 : 0;

@@ -6,8 +6,26 @@ and ``python3 -m adhbem.plot`` (plot.py) work on a machine without PETSc. The so
 imported the first time one of its names is used: ``from adhbem import PETSc`` or ``adhbem.Solver``.
 """
 import os
+import re
 
-from .results import Results, load  # noqa: F401
+
+def _version_of_source_tree() -> str:
+    """The version in the source tree's CMakeLists.txt (``project(adhbem VERSION ...)``), where
+    adhbem is used from its clone (``PYTHONPATH=python``) and no installed metadata says it."""
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "CMakeLists.txt")
+    try:
+        with open(path) as f:
+            return re.search(r"project\(adhbem VERSION ([0-9.]+)", f.read()).group(1)
+    except (OSError, AttributeError):
+        return "unknown"
+
+
+try:
+    from ._version import __version__  # written into the installed package by pip (pyproject.toml)
+except ImportError:
+    __version__ = _version_of_source_tree()
+
+from .results import Results, load  # noqa: F401,E402
 
 # Open MPI's own MPI-IO (ompio), which HDF5 writes through, opens a shared-file-pointer component
 # with every file: "sm" locks it with a semaphore named after the file's base name (one left locked
@@ -25,7 +43,7 @@ _SOLVER_NAMES = {"PETSc": "_extension", "_adhbem": "_extension", "chi": "_extens
                  "local_rows": "grid", "set_local_rows": "grid", "gather": "grid",
                  "rough_surface": "surface", "Solver": "solver"}
 
-__all__ = ["load", "Results", *(n for n in _SOLVER_NAMES if n != "_adhbem")]
+__all__ = ["__version__", "load", "Results", *(n for n in _SOLVER_NAMES if n != "_adhbem")]
 
 
 def __getattr__(name):
@@ -35,7 +53,7 @@ def __getattr__(name):
     try:
         module = importlib.import_module(f".{_SOLVER_NAMES[name]}", __name__)
     except ModuleNotFoundError as e:
-        if e.name not in ("petsc4py", "mpi4py", "adhbem_build"):
+        if e.name not in ("petsc4py", "mpi4py"):
             raise
         raise ImportError(f"adhbem.{name} needs petsc4py ({e}); reading results (adhbem.load) and plotting "
                           "(python3 -m adhbem.plot) need only h5py, NumPy and matplotlib", name=e.name) from e

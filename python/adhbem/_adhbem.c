@@ -773,5 +773,8 @@ PyMODINIT_FUNC PyInit__adhbem(void)
   m = PyModule_Create(&module);
   /* The package compares it with petsc4py's PetscInt: both must come from the same PETSc. */
   if (m && PyModule_AddIntConstant(m, "petsc_int_size", (long)sizeof(PetscInt)) < 0) Py_CLEAR(m);
+  /* ... and the PETSc it was built against with petsc4py's (major.minor), its own version with the package's */
+  if (m && PyModule_AddObject(m, "petsc_version", Py_BuildValue("(iii)", PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR, PETSC_VERSION_SUBMINOR)) < 0) Py_CLEAR(m);
+  if (m && PyModule_AddStringConstant(m, "version", ADHBEM_VERSION) < 0) Py_CLEAR(m);
   return m;
 }

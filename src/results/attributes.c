@@ -85,6 +85,12 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   nranks = size;
   PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
   PetscCall(KSPGetType(s->ksp, &ksptype));
+  { /* which adhbem and PETSc wrote the file */
+    char petsc[128];
+    PetscCall(AdhGetPETScVersion_Private(petsc, sizeof(petsc)));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "adhbem_version", PETSC_STRING, ADHBEM_VERSION));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "petsc_version", PETSC_STRING, petsc));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "E_star", PETSC_REAL, &s->Estar));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma", PETSC_REAL, &s->gamma));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "gamma_field", PETSC_BOOL, s->gamma_field ? &(PetscBool){PETSC_TRUE} : &(PetscBool){PETSC_FALSE}));

@@ -1,7 +1,7 @@
 /* The package: class id, log events, and FFTW-MPI initialisation, done once. The solver's types
    register in solver/impls/register.c. */
 #include <fftw3-mpi.h>
-#include "adhbem.h"
+#include "sys/sysimpl.h"
 
 PetscClassId  ADH_CLASSID, ADH_GRID_CLASSID;
 PetscLogEvent ADH_FFTForward, ADH_FFTBackward, ADH_ComplianceMult, ADH_Solve, ADH_SetUpdate, ADH_Predict, ADH_DetachTest, ADH_AttachLimits, ADH_LocalSolve;
@@ -38,6 +38,7 @@ PetscErrorCode AdhInitializePackage(void)
 {
   PetscFunctionBegin;
   if (AdhPackageInitialized) PetscFunctionReturn(0);
+  PetscCall(AdhCheckPETScVersion_Private());
   AdhPackageInitialized = PETSC_TRUE;
   fftw_mpi_init();
   fftwf_mpi_init();

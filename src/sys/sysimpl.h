@@ -1,5 +1,5 @@
-/* The package's services to the layers above: the check of adhbem's options (options.c) and the
-   registries of types (registry.c). */
+/* The package's services to the layers above: the check of adhbem's options (options.c), the
+   registries of types (registry.c) and the versions (version.c). */
 #ifndef ADHBEM_SYSIMPL_H
 #define ADHBEM_SYSIMPL_H
 #include <petscksp.h>
@@ -25,4 +25,9 @@ PETSC_INTERN PetscErrorCode AdhRegistryFind_Private(MPI_Comm, AdhRegistry *, con
 /* The registered names, in registration order; free the array (not the names) with PetscFree(). */
 PETSC_INTERN PetscErrorCode AdhRegistryGetNames_Private(AdhRegistry *, PetscInt *n, const char ***names);
 PETSC_INTERN PetscErrorCode AdhRegistryDestroy_Private(AdhRegistry *);
+
+/* The version (version.c): PETSc's as the process runs it ("3.18.5"), and the check, when the
+   package initialises, that it is the major.minor adhbem was built against. */
+PETSC_INTERN PetscErrorCode AdhGetPETScVersion_Private(char version[], size_t len);
+PETSC_INTERN PetscErrorCode AdhCheckPETScVersion_Private(void);
 #endif

@@ -92,3 +92,18 @@ def test_run_exec_runs_where_the_user_stands(tmp_path):
                        cwd=tmp_path, capture_output=True, text=True, env=dict(os.environ, NP="1"), timeout=600)
     assert r.returncode == 0, r.stderr[-2000:]
     assert (tmp_path / "out" / "r.h5").is_file() and (tmp_path / "out" / "r.csv").is_file()
+
+
+def test_import_with_another_petsc_version_says_so(tmp_path):
+    """petsc4py's PETSc of another major.minor than the one the extension is built against (here a
+    petsc4py that says 3.99): one ImportError naming both, when the solver side is first imported."""
+    serial_only()
+    code = ("from petsc4py import PETSc\n"
+            "class Sys(PETSc.Sys):\n    @staticmethod\n    def getVersion(*a, **k):\n        return (3, 99, 0)\n"
+            "PETSc.Sys = Sys\n"
+            "import adhbem\ntry:\n    adhbem.Solver\nexcept ImportError as e:\n    print('ImportError:', e)\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, env=python_env())
+    assert r.returncode == 0, r.stderr
+    built = "%d.%d" % _adhbem.petsc_version[:2]
+    assert r.stdout.startswith(f"ImportError: adhbem: the C extension in ") and len(r.stdout.strip().splitlines()) == 1
+    assert f"built against PETSc {built}, but petsc4py" in r.stdout and "runs PETSc 3.99" in r.stdout

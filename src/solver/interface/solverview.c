@@ -48,6 +48,11 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   if (!isascii) PetscFunctionReturn(0);
   PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)s, viewer)); /* "AdhSolver Object: (name) N MPI processes" */
   PetscCall(PetscViewerASCIIPushTab(viewer));
+  {
+    char version[256];
+    PetscCall(AdhGetVersion(version, sizeof(version)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", version));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
   PetscCall(AdhGridView(s->grid, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));

@@ -1,0 +1,216 @@
+"""adhbem installed, used from outside its tree as a user would: ``cmake --install`` into a
+temporary prefix, a program of one's own built against it once with ``pkg-config --cflags --libs
+adhbem`` and once with ``find_package(adhbem)``, run on 2 ranks and compared with the installed
+executable; the Python package pip-installed into a virtual environment of its own and run from
+another folder, with no PYTHONPATH and no build folder.
+
+The installed artefacts are used, never the tree's: no LD_LIBRARY_PATH, no PYTHONPATH (the
+installed library and executable find what they need through their RPATH), and every check looks
+at where a thing was found.
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import pytest
+
+from adhbem import PETSc
+from adhbem_build import BUILD
+from common import ROOT
+
+EXTERNAL = os.path.join(ROOT, "tests", "sys", "external")
+# a small JKR sphere pressed and pulled off (the answers are compared, not their accuracy)
+JOB_OPTIONS = dict(n=32, size=1, radius=1, E_star=1, gamma=0.02, start="hertz", path="0.05,-0.03", steps=10)
+JOB = [v for key, value in JOB_OPTIONS.items() for v in (f"-adh_{key}", str(value))]
+INDEX_BITS = 8 * PETSc.IntType().itemsize
+
+
+def serial_only():
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("installs and starts its own processes")
+
+
+def clean_env(**extra):
+    """The environment of a user's shell: none of the tree's paths, nothing the build set."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "LD_LIBRARY_PATH", "ADHBEM_BUILD")}
+    return dict(env, **extra)
+
+
+def run(cmd, **kw):
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
+    assert r.returncode == 0, f"{' '.join(map(str, cmd))} failed:\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
+    return r
+
+
+@pytest.fixture(scope="module")
+def prefix(tmp_path_factory):
+    """`cmake --install` of the suite's build into a temporary prefix."""
+    serial_only()
+    p = tmp_path_factory.mktemp("prefix")
+    run(["cmake", "--install", BUILD, "--prefix", str(p)])
+    return p
+
+
+def mpirun(exe, *args, cwd):
+    return run(["mpirun", "--oversubscribe", "-n", "2", str(exe), *args], cwd=cwd, env=clean_env())
+
+
+@pytest.fixture(scope="module")
+def executable_answer(prefix, tmp_path_factory):
+    """The installed executable's largest tension on the job, on 2 ranks, from its results file."""
+    work = tmp_path_factory.mktemp("exe")
+    mpirun(prefix / "bin" / "adhbem", *JOB, "-adh_output", "job.h5", cwd=work)
+    with h5py.File(work / "job.h5", "r") as f:
+        return float(f.attrs["pull_off_force"]), f.attrs["adhbem_version"]
+
+
+def largest_tension(stdout):
+    version, line = stdout.strip().splitlines()[-2:]
+    assert line.startswith("largest tension ")
+    return version, float(line.split()[-1])
+
+
+def test_installed_layout(prefix):
+    """What a user, a packager and another build system look for, where GNUInstallDirs puts it."""
+    for path in ("include/adhbem.h", "include/adhbemversion.h", "bin/adhbem", "lib/pkgconfig/adhbem.pc",
+                 "lib/cmake/adhbem/adhbemConfig.cmake", "lib/cmake/adhbem/adhbemConfigVersion.cmake",
+                 "lib/cmake/adhbem/adhbemTargets.cmake", "share/doc/adhbem/LICENSE"):
+        assert (prefix / path).exists(), path
+    libs = sorted(p.name for p in (prefix / "lib").glob("libadhbem.so*"))
+    major, minor = (int(v) for v in run([prefix / "bin" / "adhbem", "--version"], env=clean_env()).stdout.split()[1].split(".")[:2])
+    assert libs == ["libadhbem.so", f"libadhbem.so.{major}.{minor}", f"libadhbem.so.{major}.{minor}.{libs[-1].rsplit('.', 1)[-1]}"]
+    soname = run(["readelf", "-d", prefix / "lib" / "libadhbem.so"]).stdout
+    assert f"[libadhbem.so.{major}.{minor}]" in soname
+
+
+def test_installed_executable_runs_without_library_path(prefix):
+    """The installed executable finds the installed library (RPATH $ORIGIN/../lib), not the build's."""
+    r = run(["ldd", prefix / "bin" / "adhbem"], env=clean_env())
+    line = next(v for v in r.stdout.splitlines() if "libadhbem" in v)
+    assert str(prefix / "lib") in os.path.normpath(line.split("=>")[1].split()[0]).replace("/lib/../lib", "/lib") or \
+        os.path.realpath(line.split("=>")[1].split()[0]).startswith(os.path.realpath(prefix))
+    out = run([prefix / "bin" / "adhbem", "--version"], env=clean_env()).stdout
+    assert out.startswith("adhbem ") and "PETSc" in out
+
+
+def test_pkg_config_program(prefix, executable_answer, tmp_path):
+    """cc $(pkg-config --cflags --libs adhbem): PETSc and MPI come through Requires."""
+    env = clean_env(PKG_CONFIG_PATH=str(prefix / "lib" / "pkgconfig"))
+    flags = run(["pkg-config", "--cflags", "--libs", "adhbem"], env=env).stdout.split()
+    assert any(f.startswith("-I") and os.path.realpath(f[2:]) == os.path.realpath(prefix / "include") for f in flags)
+    assert "-lpetsc_real" in flags or any(f.startswith("-lpetsc") for f in flags)
+    exe = tmp_path / "external"
+    run(["cc", os.path.join(EXTERNAL, "external.c"), "-o", str(exe), *flags], env=env)
+    version, tension = largest_tension(mpirun(exe, *JOB, cwd=tmp_path).stdout)
+    expected, file_version = executable_answer
+    assert version.startswith(f"adhbem {file_version.decode()} (PETSc ")
+    assert tension > 0 and tension == pytest.approx(expected, rel=1e-12)
+
+
+def test_cmake_package_program(prefix, executable_answer, tmp_path):
+    """find_package(adhbem) in a CMake project of its own: adhbem::adhbem brings PETSc, MPI, FFTW."""
+    build = tmp_path / "build"
+    # the compiler CMake finds by itself (cc), not PETSc's mpicc: the target must bring MPI along
+    run(["cmake", "-S", EXTERNAL, "-B", str(build), f"-DCMAKE_PREFIX_PATH={prefix}"], env=clean_env())
+    run(["cmake", "--build", str(build)], env=clean_env())
+    version, tension = largest_tension(mpirun(build / "external", *JOB, cwd=tmp_path).stdout)
+    assert tension == pytest.approx(executable_answer[0], rel=1e-12)
+
+
+def test_cmake_package_refuses_another_version(prefix, tmp_path):
+    """find_package(adhbem 9.0) is refused by the version file, with the version found in the message."""
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "CMakeLists.txt").write_text("cmake_minimum_required(VERSION 3.18)\nproject(p C)\nfind_package(adhbem 9.0 REQUIRED CONFIG)\n")
+    r = subprocess.run(["cmake", "-S", str(src), "-B", str(tmp_path / "b"), f"-DCMAKE_PREFIX_PATH={prefix}"],
+                       capture_output=True, text=True, env=clean_env())
+    assert r.returncode != 0 and "adhbem" in r.stderr and "9.0" in r.stderr
+
+
+def test_library_refuses_another_petsc(prefix, tmp_path):
+    """A library built against PETSc 3.18 that runs with another (here a PetscGetVersionNumber
+    interposed before libpetsc's, as a newer PETSc first on the library path would give) stops
+    with one line, before it does anything."""
+    shim = tmp_path / "petscversion.c"
+    shim.write_text("#include <petscsys.h>\n"
+                    "PetscErrorCode PetscGetVersionNumber(PetscInt *a, PetscInt *b, PetscInt *c, PetscInt *d)\n"
+                    "{ if (a) *a = 3; if (b) *b = 99; if (c) *c = 0; if (d) *d = 1; return 0; }\n")
+    cflags = run(["pkg-config", "--cflags", "PETSc" if INDEX_BITS == 32 else "PETSc64"]).stdout.split()
+    lib = tmp_path / "libpetscversion.so"
+    run(["mpicc", "-shared", "-fPIC", str(shim), "-o", str(lib), *cflags])
+    r = subprocess.run([str(prefix / "bin" / "adhbem"), *JOB, "-adh_output", "x.h5"], capture_output=True, text=True,
+                       cwd=tmp_path, env=clean_env(LD_PRELOAD=str(lib)), timeout=120)
+    assert r.returncode != 0
+    assert "built against PETSc 3." in r.stderr and "runs with PETSc 3.99" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "x.h5").exists()
+
+
+@pytest.fixture(scope="module")
+def venv(prefix, tmp_path_factory):
+    """A virtual environment with the system's packages (petsc4py, mpi4py), scikit-build-core from
+    PyPI, and adhbem pip-installed from the source tree (the library built into the extension)."""
+    if INDEX_BITS != 32:
+        pytest.skip("a --system-site-packages environment sees Debian's default (32-bit) petsc4py")
+    if not shutil.which("pip3") and subprocess.run(["/usr/bin/python3", "-m", "pip", "--version"], capture_output=True).returncode:
+        pytest.skip("pip is not installed")
+    v = tmp_path_factory.mktemp("venv")
+    run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(v)])
+    pip = [str(v / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check"]
+    run(pip + ["scikit-build-core>=0.8"], env=clean_env())
+    run(pip + ["--no-build-isolation", ROOT], env=clean_env(CMAKE_BUILD_PARALLEL_LEVEL=str(os.cpu_count() or 1)),
+        cwd=str(v))
+    return v
+
+
+SOLVE = """
+import json, sys, adhbem
+print(adhbem.__file__)
+print(adhbem._adhbem.__file__)
+print(adhbem.__version__)
+s = adhbem.Solver(**json.loads(sys.argv[1]))
+s.solve_path(progress=False)
+print(repr(s.pull_off_force))
+"""
+
+
+def test_pip_package_solves_from_another_folder(venv, executable_answer, tmp_path):
+    """The installed package, not the tree's: imported from site-packages, its extension there too,
+    and its pull-off the executable's."""
+    r = run([str(venv / "bin" / "python"), "-c", SOLVE, json.dumps(JOB_OPTIONS)], cwd=tmp_path, env=clean_env())
+    module, extension, version, tension = r.stdout.strip().splitlines()[-4:]
+    site = os.path.realpath(venv)
+    assert os.path.realpath(module).startswith(site) and os.path.realpath(extension).startswith(site)
+    assert not os.path.realpath(module).startswith(os.path.realpath(ROOT))
+    assert version == executable_answer[1].decode()
+    assert float(tension) == pytest.approx(executable_answer[0], rel=1e-9)
+
+
+def test_pip_package_plot_command(venv, prefix, tmp_path):
+    """adhbem-plot FILE.h5, the console script, draws a results file of the installed executable."""
+    run([prefix / "bin" / "adhbem", *JOB, "-adh_output", "job.h5"], cwd=tmp_path, env=clean_env())
+    run([venv / "bin" / "adhbem-plot", "job.h5", "--out", "job.png"], cwd=tmp_path, env=clean_env(MPLBACKEND="Agg"))
+    assert (tmp_path / "job.png").stat().st_size > 10_000
+
+
+def test_pip_package_against_installed_library(prefix, executable_answer, tmp_path_factory):
+    """pip with ADHBEM_BUILD_CORE=OFF builds only the extension, against the installed library."""
+    if INDEX_BITS != 32:
+        pytest.skip("a --system-site-packages environment sees Debian's default (32-bit) petsc4py")
+    v = tmp_path_factory.mktemp("venv_core")
+    run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(v)])
+    pip = [str(v / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check"]
+    run(pip + ["scikit-build-core>=0.8"], env=clean_env())
+    run(pip + ["--no-build-isolation", "--config-settings=cmake.define.ADHBEM_BUILD_CORE=OFF",
+               f"--config-settings=cmake.define.CMAKE_PREFIX_PATH={prefix}", ROOT], env=clean_env(), cwd=str(v))
+    work = tmp_path_factory.mktemp("work_core")
+    r = run([str(v / "bin" / "python"), "-c", SOLVE, json.dumps(JOB_OPTIONS)], cwd=work, env=clean_env())
+    extension = r.stdout.strip().splitlines()[-3]
+    linked = run(["ldd", extension]).stdout
+    assert any("libadhbem" in line and os.path.realpath(line.split("=>")[1].split()[0]).startswith(os.path.realpath(prefix))
+               for line in linked.splitlines())
+    assert float(r.stdout.split()[-1]) == pytest.approx(executable_answer[0], rel=1e-9)
+

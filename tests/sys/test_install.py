@@ -214,3 +214,23 @@ def test_pip_package_against_installed_library(prefix, executable_answer, tmp_pa
                for line in linked.splitlines())
     assert float(r.stdout.split()[-1]) == pytest.approx(executable_answer[0], rel=1e-9)
 
+
+
+def test_configure_finds_petsc_dir(tmp_path):
+    """A PETSc of one's own: PETSC_DIR/PETSC_ARCH in the environment is where CMake looks first (here a
+    PETSC_DIR whose PETSc.pc is the system's with a marker in its Cflags, and no PKG_CONFIG_PATH)."""
+    serial_only()
+    pkg = "PETSc" if INDEX_BITS == 32 else "PETSc64"
+    system_pc = run(["pkg-config", "--path", pkg]).stdout.strip()
+    arch = tmp_path / "petsc" / "arch-own" / "lib" / "pkgconfig"
+    arch.mkdir(parents=True)
+    text = open(system_pc).read()
+    prefix = run(["pkg-config", "--variable=prefix", pkg]).stdout.strip()
+    text = text.replace("${pcfiledir}", os.path.dirname(system_pc)).replace("Cflags:", "Cflags: -DADHBEM_OWN_PETSC_MARK", 1)
+    text = "\n".join(f"prefix={prefix}" if line.startswith("prefix=") else line for line in text.splitlines()) + "\n"
+    (arch / f"{pkg}.pc").write_text(text)
+    env = clean_env(PETSC_DIR=str(tmp_path / "petsc"), PETSC_ARCH="arch-own")
+    env.pop("PKG_CONFIG_PATH", None)
+    run(["cmake", "-S", ROOT, "-B", str(tmp_path / "b"), f"-DADHBEM_PETSC_PKG={pkg}", "-DADHBEM_BUILD_PYTHON=OFF"], env=env)
+    cache = (tmp_path / "b" / "CMakeCache.txt").read_text()
+    assert "ADHBEM_OWN_PETSC_MARK" in cache

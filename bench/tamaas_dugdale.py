@@ -1,5 +1,5 @@
 """./run bench tamaas_dugdale --peer-python VENV/bin/python [--n 128] [--lambda 1] [--steps 12]
-    [--config resolved] [--tolerance 1e-12]
+    [--config resolved] [--tolerance 1e-12] [-- ADHBEM OPTIONS]
 
 Finite-range adhesion side by side with a peer on the same physics: adhbem's -adh_criterion
 dugdale against Tamaas' Polonsky-Keer-Rey solver with its Maugis (Dugdale) adhesion functional
@@ -18,7 +18,8 @@ The table gives per state both forces and contact and zone counts. The cohesive 
 equilibria at one d where the path passes a jump: each solver picks one, from its previous
 state, so the two may differ there while both are equilibria; where the state is unique they
 agree to the solvers' tolerances. The summary counts the states that agree (forces within 1e-6
-relative, the same contact count), the largest tension of each and their process CPU times
+relative, the same contact count), the median and largest differences of force and contact count
+over the states, the largest tension of each and their process CPU times
 (getrusage of adhbem's process; time.process_time around Tamaas' solves), with adhbem's counts.
 
 Tamaas is not a dependency: install it in a virtual environment of your own, e.g.
@@ -72,6 +73,7 @@ def main():
     ap.add_argument("--steps", type=int, default=12, help="steps per leg")
     ap.add_argument("--config", default="resolved", choices=("resolved", "moderate", "unresolved"))
     ap.add_argument("--tolerance", type=float, default=1e-12, help="Tamaas' tolerance")
+    ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
     a = ap.parse_args()
     s, gamma, what = convergence.configuration(a.config, 64)  # lengths in spacings of a 64 grid: L = 64
     z = s.heights(a.n)
@@ -93,7 +95,7 @@ def main():
         cmd = [convergence.EXE, "-adh_n", str(a.n), "-adh_size", repr(s.L), "-adh_boundary", "periodic",
                "-adh_indenter", "file", "-adh_topography", hfile, "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma),
                "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_start", "adhesive",
-               "-adh_path", ",".join(repr(v) for v in path), "-adh_steps", str(a.steps), "-adh_output", out, "-adh_progress", "0"]
+               "-adh_path", ",".join(repr(v) for v in path), "-adh_steps", str(a.steps), "-adh_output", out, "-adh_progress", "0"] + a.extra
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -114,17 +116,23 @@ def main():
             sys.exit(f"bench tamaas_dugdale: Tamaas failed:\n{t.stderr[-2000:]}")
     peer = [line.split()[1:] for line in t.stdout.splitlines() if line.startswith("STATE")]
     cpu_peer = float([line.split()[1] for line in t.stdout.splitlines() if line.startswith("CPU")][0])
-    print(f"\n{'state':>5} {'d':>9} {'F adhbem':>12} {'F Tamaas':>12} {'contact':>8} {'(Tamaas)':>8} {'zone':>6} {'(Tamaas)':>8}  agree")
+    print(f"\n{'state':>5} {'d':>9} {'F adhbem':>12} {'F Tamaas':>12} {'dF/|F|':>9} {'contact':>8} {'(Tamaas)':>8} {'zone':>6} {'(Tamaas)':>8}  agree")
     agree = 0
+    dF, dn = [], []
     for k, (d, F, n, zone) in enumerate(zip(c["d"], c["force"], c["contact_points"], c["cohesive_area"])):
         _, Ft, nt, zt = peer[k]
         Ft, nt, zt = float(Ft), int(nt), int(zt)
         same = abs(F - Ft) <= 1e-6 * max(abs(F), abs(Ft), 1e-300) and n == nt
         agree += same
-        print(f"{k:>5} {d:>9.4g} {F:>12.6g} {Ft:>12.6g} {int(n):>8} {nt:>8} {round(zone / cell):>6} {zt:>8}  {'yes' if same else 'no'}")
+        rel = abs(F - Ft) / max(abs(F), abs(Ft), 1e-300)
+        dF.append(rel)
+        dn.append(abs(int(n) - nt) / max(int(n), nt, 1))
+        print(f"{k:>5} {d:>9.4g} {F:>12.6g} {Ft:>12.6g} {rel:>9.2e} {int(n):>8} {nt:>8} {round(zone / cell):>6} {zt:>8}  {'yes' if same else 'no'}")
     Ft = np.array([float(v[1]) for v in peer])
     print(f"\n{agree} of {len(c['d'])} states agree (force within 1e-6, the same contact); largest tension adhbem "
           f"{-c['force'].min():.6g}, Tamaas {-Ft.min():.6g}")
+    print(f"forces differ by {np.median(dF):.2%} in the median state, {max(dF):.2%} at most; contact counts by "
+          f"{np.median(dn):.2%} in the median state, {max(dn):.2%} at most")
     print(f"CPU seconds: adhbem {cpu_adhbem:.2f} (the process: {int(c['outer_iterations'].sum())} set updates, "
           f"{int(c['ksp_iterations'].sum())} KSP iterations, {int(c['fft_pairs'].sum())} FFT pairs), Tamaas {cpu_peer:.2f} (its solves)")
 

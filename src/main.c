@@ -63,6 +63,7 @@ static int CheckOptionsFiles(int argc, char **argv)
 
   if (!rank) rank = getenv("PMI_RANK");
   if (!rank) rank = getenv("PMIX_RANK");
+  if (!rank) rank = getenv("SLURM_PROCID");
   for (int k = 1; k < argc; k++) {
     const char *file = k + 1 < argc ? argv[k + 1] : NULL;
     if (strcmp(argv[k], "-options_file")) continue;
@@ -77,7 +78,8 @@ static int CheckOptionsFiles(int argc, char **argv)
 }
 
 /* --version or -version: adhbem's version, the PETSc it runs with and the one it was built against, printed
-   by the first rank, before PETSc starts (PETSc's own -version would add its banner and go on). */
+   by the first rank, before PETSc starts (PETSc's own -version would add its banner and go on). Returns 0
+   without such an option, 1 when it was printed (by this rank or the first), 2 when it failed. */
 static int PrintVersion(int argc, char **argv)
 {
   const char *rank = getenv("OMPI_COMM_WORLD_RANK");
@@ -85,10 +87,11 @@ static int PrintVersion(int argc, char **argv)
 
   if (!rank) rank = getenv("PMI_RANK");
   if (!rank) rank = getenv("PMIX_RANK");
+  if (!rank) rank = getenv("SLURM_PROCID");
   for (int k = 1; k < argc; k++) {
     if (strcmp(argv[k], "--version") && strcmp(argv[k], "-version")) continue;
     if (rank && strcmp(rank, "0")) return 1;
-    if (AdhGetVersion(version, sizeof(version))) return 1;
+    if (AdhGetVersion(version, sizeof(version))) return 2;
     printf("%s\nbuilt against PETSc %d.%d.%d with %d-bit indices\n", version, PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR, PETSC_VERSION_SUBMINOR, (int)(8 * sizeof(PetscInt)));
     return 1;
   }
@@ -180,7 +183,10 @@ int main(int argc, char **argv)
   PetscBool      traceback = PETSC_FALSE;
   AdhSolver      solver = NULL;
 
-  if (PrintVersion(argc, argv)) return 0;
+  {
+    int printed = PrintVersion(argc, argv);
+    if (printed) return printed == 1 ? 0 : 1;
+  }
   AvoidStaleLocks();
   if (CheckOptionsFiles(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));

@@ -726,7 +726,9 @@ def _state(text):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python3 -m adhbem.plot", description=__doc__.split("\n\n")[0])
+    # the name it was called by: the adhbem-plot command, or python3 -m adhbem.plot
+    prog = "adhbem-plot" if os.path.basename(sys.argv[0]) == "adhbem-plot" else "python3 -m adhbem.plot"
+    ap = argparse.ArgumentParser(prog=prog, description=__doc__.split("\n\n")[0])
     ap.add_argument("file", help="results file written with -adh_output")
     ap.add_argument("--out", help="figure file, PNG, PDF or SVG by its extension (default: FILE.png)")
     ap.add_argument("--width", default="column", choices=("column", "double"),

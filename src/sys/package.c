@@ -38,7 +38,7 @@ PetscErrorCode AdhInitializePackage(void)
 {
   PetscFunctionBegin;
   if (AdhPackageInitialized) PetscFunctionReturn(0);
-  PetscCall(AdhCheckPETScVersion_Private());
+  PetscCall(AdhCheckPETSc_Private());
   AdhPackageInitialized = PETSC_TRUE;
   fftw_mpi_init();
   fftwf_mpi_init();

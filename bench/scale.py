@@ -10,7 +10,7 @@ quarter of the gap profile lies below it, back to 0 and on to -d1, 25 steps a le
 pull-off, with the default criterion and attach rule (further adhbem options after --).
 `--cutoff 32 --gamma 0.209` is ./run rough's stickier surface (a_c = 5/8 of the cut-off
 wavelength): there the contact zips across the cell at first touch, so its cost per state grows
-with the cell's side (docs/performance.md).
+with the cell's side (docs/developers/notebook/performance.md).
 
 Such a run takes hours. It runs in DIR (default bench-scale-N/ under the current directory)
 with a checkpoint after every state: calling the bench again with the same DIR goes on from the

@@ -1,4 +1,4 @@
-"""The source tree shows the architecture (docs/code-map.md): one folder per layer of src/, each
+"""The source tree shows the architecture (docs/developers/code-map.md): one folder per layer of src/, each
 layer using only itself and the layers below it, the solver's registered types one file each
 under src/solver/impls/<kind>/, registered in one place. Read from the sources."""
 import collections
@@ -97,7 +97,7 @@ def test_layers_use_only_themselves_and_the_layers_below():
             impl = home.startswith("solver/impls/") and not path.startswith("solver/impls/") and path != REGISTRATION
             if (above or impl) and not (path == REGISTRATION and re.match(REGISTERED, name)):
                 upward[path].add(f"{name} ({home})")
-    assert not upward, "layers that reach up (docs/code-map.md): " + "; ".join(
+    assert not upward, "layers that reach up (docs/developers/code-map.md): " + "; ".join(
         f"{p} uses {', '.join(sorted(u))}" for p, u in sorted(upward.items()))
 
 

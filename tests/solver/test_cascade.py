@@ -1,7 +1,7 @@
 """-adh_cascade_rtol: the solves between set updates of a step stop at a loose relative residual,
 and the set is updated on their pressures; a set that stands on one is solved to the full
 tolerance and tested again. The sets along the way may differ from the exact cascade's; what
-counts is the error against theory and the cost (docs/performance.md, the work-precision table)."""
+counts is the error against theory and the cost (docs/developers/notebook/performance.md, the work-precision table)."""
 import math
 
 import numpy as np
@@ -135,7 +135,7 @@ def test_bad_cascade_rtol_is_refused(tmp_path, value):
 
 
 # -adh_cascade_apart D: points may join in a set update that lets others go, D grid spacings away
-# from them (docs/performance.md: the work-precision table and the cost as the cell grows).
+# from them (docs/developers/notebook/performance.md: the work-precision table and the cost as the cell grows).
 
 
 def test_apart_cascade_on_the_jkr_sphere():
@@ -209,7 +209,7 @@ def test_apart_cascade_loading_branch_is_jkr():
 
 # -adh_cascade_local F: after a set update lets points go, local solves within F times the
 # smallest asperities' JKR radius of them (W grid spacings), until one lets nothing go; then the
-# whole set again (docs/performance.md). ROUGH's estimated a_c is 1.428 spacings; the F below lie
+# whole set again (docs/developers/notebook/performance.md). ROUGH's estimated a_c is 1.428 spacings; the F below lie
 # well inside the intervals that give the widths named.
 
 

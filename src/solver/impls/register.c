@@ -1,6 +1,6 @@
 /* The solver's built-in types, registered in one place: detachment criteria, load controls and
    contact-set predictors. A new type is a file (or a folder) in impls/<kind>/ whose create
-   function fills in the kind's ops (solverimpl.h), and its line here (docs/code-map.md). */
+   function fills in the kind's ops (solverimpl.h), and its line here (docs/developers/code-map.md). */
 #include "solver/solverimpl.h"
 
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver);

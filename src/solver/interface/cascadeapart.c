@@ -8,7 +8,7 @@
    join far from the points let go sees the gap of the solved state there, which their going
    barely changes; near them it waits, as in the exact cascade. The sets differ from the exact
    cascade's, so the route is judged by its error against the converged reference
-   (docs/performance.md).
+   (docs/developers/notebook/performance.md).
 
    The points let go in the update are marked in s->gone (AdhSolverRemovePoint_Private), and keep
    their pressure until the attach test is over, so that it (and griffith's limits) see the state

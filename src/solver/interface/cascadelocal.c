@@ -13,7 +13,7 @@
    detachments, and every recorded state still ends on a solve of the whole set and its attach
    test. A point let go on a local solve's pressures does not come back (the attach rules of the
    step apply), so the states may differ from the exact cascade's: the route is judged by its
-   error against the converged reference (docs/performance.md).
+   error against the converged reference (docs/developers/notebook/performance.md).
 
    The frozen rest is a bias, not only an error: the set's points beyond the window would take up
    part of the tension let go, and held fixed they leave it all to the window, whose points then
@@ -71,7 +71,7 @@ PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver s)
    (crack-closure) under a control whose steps re-solve at a fixed target (displacement), local solves on the whole grid (F = inf) to -adh_cascade_local_rtol 1e-3. On the
    resolved rough cell's ensembles (64^2-256^2, 20 runs a grid) its errors were 0.5-1.2 times the
    exact cascade's, and on every analytic case the same or nearer, for 0.63 times the FFT pairs at
-   256^2 (docs/performance.md). The exact cascade (F = 0) stays with the paper's criterion, whose
+   256^2 (docs/developers/notebook/performance.md). The exact cascade (F = 0) stays with the paper's criterion, whose
    loop it is, and under force control, which has no local solves. */
 PetscErrorCode AdhSolverDefaultCascadeLocal_Private(AdhSolver s)
 {

@@ -31,7 +31,7 @@ AdhRegistry AdhControls = {"-adh_control", "load control", NULL};
   which this function does first. Registering a name again replaces its function.
 
   A new type is one file in src/solver/impls/control/ and its registration line in src/solver/impls/register.c
-  (docs/code-map.md); its step may run the set-update loop the built-in controls share.
+  (docs/developers/code-map.md); its step may run the set-update loop the built-in controls share.
 
 .seealso: `AdhSolverSetControlType()`, `AdhSolverGetControlType()`, `AdhCriterionRegister()`, `AdhPredictorRegister()`
 @*/

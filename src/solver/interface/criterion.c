@@ -32,7 +32,7 @@ AdhRegistry AdhCriteria = {"-adh_criterion", "detachment criterion", NULL};
   initialized, which this function does first. Registering a name again replaces its function.
 
   A new type is one file (or folder) in src/solver/impls/criterion/ and its registration line in
-  src/solver/impls/register.c, with no edit of the solver's interface; docs/code-map.md works one through. Its options
+  src/solver/impls/register.c, with no edit of the solver's interface; docs/developers/code-map.md works one through. Its options
   are read by its setfromoptions in a -help group of its own, its lines of `AdhSolverView()` and its attributes in the
   results file come from its view.
 

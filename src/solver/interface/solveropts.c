@@ -74,7 +74,7 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
   The options come in the groups -help shows, with every option and its default: the grid; the material; the
   indenter and the rough surface; the adhesion (work of adhesion, criterion); the boundary, path and load control
   (with the predictor); output, monitoring and long runs; and the solver's tuning (-adh_certify, -adh_cascade_*,
-  -adh_box, -adh_max_outer, -adh_memory_check). docs/options.md lists them by task.
+  -adh_box, -adh_max_outer, -adh_memory_check). docs/reference/options.md lists them by task.
 
   Values out of range are errors naming the option: -adh_gamma below 0 or not finite, -adh_critical_stress below 0,
   -adh_cascade_rtol outside [0, 1), -adh_cascade_apart outside [0, 64], -adh_cascade_local below 0 or NaN,

@@ -46,7 +46,7 @@
    time, for a cache of each set's walks along the front (about 1 kB a front point). With this criterion
    -adh_cascade_local is inf, the whole grid, by default under displacement control.
 
-   Measured (./run bench criterion, docs/validation.md): the work of adhesion it acts with is within 1.4% of dgamma on
+   Measured (./run bench criterion, docs/verification/validation.md): the work of adhesion it acts with is within 1.4% of dgamma on
    straight edges in the six directions measured (0 to 45 degrees), within 0.2% on the JKR sphere at a_c/h 25 to 100,
    converging on the cone and the punch; pohrt-popov's: 1.02 to 1.88 on the straight edges, 0-6% high on the curved
    ones.
@@ -69,7 +69,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
   PetscFunctionBegin;
   if (cc->fetch) PetscFunctionReturn(0);
   cc->radius_max = PetscMax(cc->radius, cc->radius_max);
-  /* its certified stop: the same sets for fewer FFT pairs, about the default's time (docs/performance.md) */
+  /* its certified stop: the same sets for fewer FFT pairs, about the default's time (docs/developers/notebook/performance.md) */
   s->crops.decide = cc->certify ? Decide_CrackClosure : NULL;
   /* the certified stop evaluates a set at several iterates: keep its front's walks (a PetscInt a
      point, and about 1 kB a front point: some 90 members of 12 B within the radius) */

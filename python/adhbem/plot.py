@@ -20,7 +20,7 @@ One function a panel, each drawing on matplotlib axes of your own:
 (``width="double"``, 7.2 in); ``plot(FILE)`` writes it, as PNG, PDF or SVG by the extension of
 ``out``. ``results`` is a file name or an ``adhbem.load(...)`` object; ``compare`` adds other runs
 (the same surface without adhesion, another criterion, ...), each labelled by its file name and
-what differs between the runs. ``normalised=True`` draws a JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+what differs between the runs. ``normalised=True`` draws a JKR sphere in F/F_adh, a/a_c, d/abs(d_c).
 
 adhbem has no units of its own: lengths, E* and dgamma are those of the input (any consistent
 set), so axes carry symbols, not units.
@@ -188,7 +188,7 @@ def visible(curve):
 
 
 def scales(params):
-    """The scales --normalised divides by: ("jkr", F_adh, a_c, |d_c|) for a sphere with a uniform
+    """The scales --normalised divides by: ("jkr", F_adh, a_c, abs(d_c)) for a sphere with a uniform
     dgamma > 0 on a free boundary, else None."""
     g = params.get("gamma", 0.0)
     if (params.get("indenter") == "sphere" and params.get("boundary") == "free" and g > 0
@@ -317,7 +317,7 @@ def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (),
     compare : sequence of the same, optional
         Other runs drawn beside, one colour a run.
     normalised : bool, default False
-        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+        A JKR sphere in F/F_adh, a/a_c, d/abs(d_c).
     theory : bool, default True
         Draw the analytic curve where the indenter has one.
     legend : bool, default True
@@ -376,7 +376,7 @@ def area(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), 
     compare : sequence of the same, optional
         Other runs drawn beside, one colour a run.
     normalised : bool, default False
-        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+        A JKR sphere in F/F_adh, a/a_c, d/abs(d_c).
     theory : bool, default True
         Draw the analytic curve where the indenter has one.
     legend : bool, default True
@@ -483,7 +483,7 @@ def contact_map(ax: "Axes", results: ResultsLike, state: Union[int, str] = "deep
     colorbar : bool, default True
         Add the colour bar.
     normalised : bool, default False
-        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+        A JKR sphere in F/F_adh, a/a_c, d/abs(d_c).
 
     Returns
     -------
@@ -618,7 +618,7 @@ def figure(results: ResultsLike, states: Optional[Sequence[Union[int, str]]] = N
     compare : sequence of the same, optional
         Other runs drawn beside, one colour a run.
     normalised : bool, default False
-        A JKR sphere in F/F_adh, a/a_c, d/|d_c|.
+        A JKR sphere in F/F_adh, a/a_c, d/abs(d_c).
     width : {'column', 'double'}, default 'column'
         A journal column (3.5 in, two panels a row) or the page (7.2 in, one row).
     resolution_panel : bool, default False
@@ -736,7 +736,7 @@ def main(argv=None):
     ap.add_argument("--states", help="contact maps: comma-separated curve rows (negative from the end), 'deepest' "
                     "or 'tension' (default: deepest,tension)")
     ap.add_argument("--compare", nargs="*", default=(), help="other results files whose curves go beside")
-    ap.add_argument("--normalised", action="store_true", help="a JKR sphere on a free boundary in F/F_adh, a/a_c, d/|d_c|")
+    ap.add_argument("--normalised", action="store_true", help="a JKR sphere on a free boundary in F/F_adh, a/a_c, d/abs(d_c)")
     ap.add_argument("--resolution", action="store_true", help="add the panel of the resolution of the adhesion")
     a = ap.parse_args(argv)
     try:

@@ -67,7 +67,7 @@ static void ModeGaussian(PetscInt seed, PetscInt kx, PetscInt ky, double *re, do
 . -adh_cutoff_wavelength <lambda_s> - the short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default: 4 max(hx, hy), at
                                       most the cell size)
 . -adh_rms_height <h> - the rms height sqrt(mean z^2) over the grid points, realised exactly (not with -adh_rms_slope)
-. -adh_rms_slope <s> - the rms slope sqrt(mean |grad z|^2), from the Fourier coefficients, realised exactly (default 0.1
+. -adh_rms_slope <s> - the rms slope sqrt(mean (grad z)^2), from the Fourier coefficients, realised exactly (default 0.1
                        unless -adh_rms_height is given)
 - -adh_seed <seed> - the random seed: each Fourier coefficient is a hash of (seed, kx, ky) (default 1)
 
@@ -97,7 +97,7 @@ PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhS
   PetscCall(PetscOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default -2: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", s->rolloff_wavelength, &s->rolloff_wavelength, NULL));
   PetscCall(PetscOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default -2: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", s->cutoff_wavelength, &s->cutoff_wavelength, NULL));
   PetscCall(PetscOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default -2: not set; not with -adh_rms_slope)", "AdhSurfaceGenerate", s->rms_height, &s->rms_height, &seth));
-  PetscCall(PetscOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean |grad z|^2), defined spectrally from the Fourier coefficients (sum of q^2 |z_q|^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
+  PetscCall(PetscOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean (grad z)^2), defined spectrally from the Fourier coefficients (sum of q^2 abs(z_q)^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
   PetscCall(PetscOptionsInt("-adh_seed", "Random seed: each Fourier coefficient is a hash of (seed, kx, ky)", "AdhSurfaceGenerate", s->seed, &s->seed, NULL));
   PetscOptionsEnd();
   PetscCheck(!(seth && sets), comm, PETSC_ERR_ARG_INCOMP, "-adh_rms_height and -adh_rms_slope: give one of them, not both");

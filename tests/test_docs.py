@@ -1,0 +1,67 @@
+"""The documentation site builds with Sphinx without a warning (``./run docs`` builds it in full),
+its tutorials run (small, ADHBEM_TUTORIAL_QUICK), and its references hold every public C function
+and type of include/adhbem.h and every Python entry point: they are made from the code, so a
+function without a manual page or a docstring that Sphinx cannot read fails here."""
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+from common import ROOT
+from test_manual_pages import public_functions
+
+pytestmark = pytest.mark.timeout(1200)
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    from adhbem import PETSc
+    if PETSc.COMM_WORLD.getSize() > 1:
+        pytest.skip("builds the site in a process of its own")
+    out = tmp_path_factory.mktemp("site")
+    env = dict(os.environ, ADHBEM_TUTORIAL_QUICK="1", MPLBACKEND="Agg")
+    r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
+                        "-d", str(out / "doctrees"), os.path.join(ROOT, "docs"), str(out / "html")],
+                       capture_output=True, text=True, env=env, timeout=1200)
+    assert r.returncode == 0, f"the site does not build cleanly:\n{r.stderr[-6000:]}"
+    return out / "html"
+
+
+def text_of(path):
+    with open(path) as f:
+        return re.sub(r"<[^>]+>", "", f.read())
+
+
+def test_every_public_c_function_in_the_reference(site):
+    """Each has an entry of its own (the C domain's anchor c.NAME), not only a mention."""
+    pages = "".join((p).read_text() for p in (site / "reference" / "c-api").glob("*.html"))
+    missing = [f for f in public_functions() if f'id="c.{f}"' not in pages]
+    assert not missing, f"public functions missing from the C API reference: {missing}"
+    with open(os.path.join(ROOT, "include", "adhbem.h")) as f:
+        header = f.read()
+    types = set(re.findall(r"^typedef .*?\b(\w+);", header, re.M)) | set(re.findall(r"^\} (\w+);", header, re.M))
+    assert len(types) > 10 and not [t for t in types if f'id="c.{t}"' not in pages]
+
+
+def test_every_python_entry_point_in_the_reference(site):
+    page = text_of(site / "reference" / "python-api.html")
+    for name in ("adhbem.Solver", "solve_path", "iterate_path", "adhbem.load", "adhbem.compliance",
+                 "adhbem.rough_surface", "adhbem.plot.figure", "adhbem.plot.curve", "adhbem.theory.maugis_pulloff"):
+        assert name.split(".")[-1] in page, name
+
+
+def test_every_option_in_the_reference(site):
+    from adhbem.options import solver_options
+    page = text_of(site / "reference" / "options.html")
+    missing = [o.name for o in solver_options() if f"-adh_{o.name}" not in page]
+    assert not missing, missing
+
+
+def test_tutorials_ran_with_figures(site):
+    tutorials = sorted(p for p in os.listdir(os.path.join(ROOT, "tutorials")) if p.startswith("tutorial_") and p.endswith(".py"))
+    for t in tutorials:
+        page = site / "tutorials" / t.replace(".py", ".html")
+        assert page.exists(), t
+        assert re.search(r'<img [^>]*src="\.\./_images/sphx_glr_' + t[:-3], page.read_text()), f"{t} made no figure"

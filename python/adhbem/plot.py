@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Optional, Sequence, Union
 
 import numpy as np
 
+from . import theory
 from .results import Results, load
 
 if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn
@@ -95,20 +96,16 @@ def analytic(params, d, area):
     amax = 1.2 * math.sqrt(max(area.max(), 1e-300) / math.pi)
     a = np.linspace(amax / 400, amax, 400)
     if kind == "sphere":
-        R = params["radius"]
-        F = 4 * E * a ** 3 / (3 * R) - np.sqrt(8 * math.pi * a ** 3 * E * gamma)
-        dd = a ** 2 / R - np.sqrt(2 * math.pi * a * gamma / E)
+        dd, F = theory.jkr_sphere(a, params["radius"], gamma, E)
         return ("JKR" if gamma > 0 else "Hertz"), dd, F, math.pi * a ** 2
     if kind == "cone":
-        s = params["cone_slope"]
-        F = math.pi / 2 * E * a ** 2 * s - np.sqrt(8 * math.pi * a ** 3 * E * gamma)
-        dd = math.pi / 2 * a * s - np.sqrt(2 * math.pi * a * gamma / E)
+        dd, F = theory.jkr_cone(a, params["cone_slope"], gamma, E)
         return ("JKR-type cone" if gamma > 0 else "cone"), dd, F, math.pi * a ** 2
     if kind == "punch":
         ap = params["punch_radius"]
-        dcrit = -math.sqrt(2 * math.pi * ap * gamma / E)
+        stiffness, dcrit = theory.kendall_punch(ap, gamma, E)
         dd = np.linspace(max(dcrit, d.min()), d.max(), 200)
-        return "Kendall", dd, 2 * ap * E * dd, np.full_like(dd, math.pi * ap ** 2)
+        return "Kendall", dd, stiffness * dd, np.full_like(dd, math.pi * ap ** 2)
     return None
 
 

@@ -1,6 +1,13 @@
-"""Closed forms the solver is validated against: Maugis' finite-range (Dugdale) adhesion of a
+"""Closed forms the solver is validated against: the JKR sphere (Johnson, Kendall & Roberts 1971),
+the JKR-type cone, Kendall's flat punch (1971), and Maugis' finite-range (Dugdale) adhesion of a
 sphere, in the notation of Johnson & Greenwood (1997).
 
+The JKR limit (zero range), for a contact radius ``a``, work of adhesion ``dgamma`` and reduced
+modulus ``E*``: a sphere of radius ``R`` carries ``F = 4 E* a^3 / (3 R) - sqrt(8 pi dgamma E* a^3)``
+at the indentation ``d = a^2 / R - sqrt(2 pi dgamma a / E*)``; its pull-off force (the largest
+tension) is ``1.5 pi dgamma R``, at the contact radius ``a_c = (9 pi dgamma R^2 / (8 E*))^(1/3)``.
+
+Maugis:
 With ``K = 4 E*/3``, a sphere of radius ``R``, work of adhesion ``dgamma`` and cohesive stress
 ``s0`` (range ``dgamma/s0``), the Tabor-Maugis parameter is
 ``lambda = 2 s0 (R / (pi dgamma K^2))^(1/3)``; the contact radius ``a``, force ``F`` and indentation
@@ -19,6 +26,63 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+
+def jkr_sphere(a, R: float = 1.0, dgamma: float = 0.0, E_star: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """The JKR sphere (Hertz without adhesion): indentation and force at contact radii ``a``.
+
+    Parameters
+    ----------
+    a : array_like
+        Contact radii.
+    R : float, optional
+        The sphere's radius.
+    dgamma : float, optional
+        The work of adhesion (0: Hertz).
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    d, F : numpy.ndarray
+        ``d = a^2/R - sqrt(2 pi dgamma a / E*)`` and ``F = 4 E* a^3 / (3 R) - sqrt(8 pi dgamma E* a^3)``.
+
+    Examples
+    --------
+    >>> d, F = jkr_sphere([0.1], R=1.0, dgamma=0.0)
+    >>> round(float(d[0]), 6), round(float(F[0]), 6)
+    (0.01, 0.001333)
+    """
+    a = np.asarray(a, dtype=float)
+    return (a ** 2 / R - np.sqrt(2 * math.pi * dgamma * a / E_star),
+            4 * E_star * a ** 3 / (3 * R) - np.sqrt(8 * math.pi * dgamma * E_star * a ** 3))
+
+
+def jkr_pulloff(R: float, dgamma: float, E_star: float = 1.0) -> tuple[float, float]:
+    """The JKR sphere's pull-off: the largest tension ``1.5 pi dgamma R`` and its contact radius.
+
+    Returns
+    -------
+    F_adh, a_c : float
+        ``1.5 pi dgamma R`` and ``(9 pi dgamma R^2 / (8 E*))^(1/3)``.
+    """
+    return 1.5 * math.pi * dgamma * R, (9 * math.pi * dgamma * R ** 2 / (8 * E_star)) ** (1.0 / 3.0)
+
+
+def jkr_cone(a, slope: float, dgamma: float = 0.0, E_star: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """The JKR-type cone of surface slope ``slope`` (Maugis & Barquins): indentation and force at
+    contact radii ``a``: ``d = pi a slope / 2 - sqrt(2 pi dgamma a / E*)``,
+    ``F = pi E* a^2 slope / 2 - sqrt(8 pi dgamma E* a^3)``."""
+    a = np.asarray(a, dtype=float)
+    return (math.pi / 2 * a * slope - np.sqrt(2 * math.pi * dgamma * a / E_star),
+            math.pi / 2 * E_star * a ** 2 * slope - np.sqrt(8 * math.pi * dgamma * E_star * a ** 3))
+
+
+def kendall_punch(radius: float, dgamma: float, E_star: float = 1.0) -> tuple[float, float]:
+    """Kendall's flat punch of radius ``radius``: its stiffness ``2 E* radius`` (``F = 2 E* radius d``
+    while in contact) and the indentation at which it comes off, ``-sqrt(2 pi dgamma radius / E*)``;
+    the pull-off force is the stiffness times that, ``sqrt(8 pi dgamma E* radius^3)``."""
+    return 2 * E_star * radius, -math.sqrt(2 * math.pi * dgamma * radius / E_star)
 
 
 def tabor_lambda(s0: float, dgamma: float, R: float = 1.0, E_star: float = 1.0) -> float:

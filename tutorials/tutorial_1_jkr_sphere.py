@@ -74,9 +74,9 @@ for ax, y, y_jkr, label in ((ax1, curve["force"] / F_adh, F_jkr / F_adh, "force 
     ax.set_ylabel(label)
 ax1.axhline(-1, color="k", lw=0.5)
 ax1.legend(fontsize=8)
-for ax, y in ((ax1, curve["force"] / F_adh), (ax2, np.sqrt(curve["area"] / np.pi) / a_c)):
+for ax, y, low in ((ax1, curve["force"] / F_adh, -1.2), (ax2, np.sqrt(curve["area"] / np.pi) / a_c, 0.0)):
     ax.set_xlim(-0.5 * d1, 1.05 * d1)
-    ax.set_ylim(min(y.min(), -1.0) - 0.2, 1.1 * y.max())
+    ax.set_ylim(low, 1.1 * y.max())
 
 # %%
 # What the figure says

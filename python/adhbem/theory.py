@@ -1,5 +1,5 @@
 """Closed forms the solver is validated against: the JKR sphere (Johnson, Kendall & Roberts 1971),
-the JKR-type cone, Kendall's flat punch (1971), and Maugis' finite-range (Dugdale) adhesion of a
+the JKR-type cone, Kendall's flat punch (1971), Johnson's adhesive wavy surface (1995), and Maugis' finite-range (Dugdale) adhesion of a
 sphere, in the notation of Johnson & Greenwood (1997).
 
 The JKR limit (zero range), for a contact radius ``a``, work of adhesion ``dgamma`` and reduced
@@ -83,6 +83,42 @@ def kendall_punch(radius: float, dgamma: float, E_star: float = 1.0) -> tuple[fl
     while in contact) and the indentation at which it comes off, ``-sqrt(2 pi dgamma radius / E*)``;
     the pull-off force is the stiffness times that, ``sqrt(8 pi dgamma E* radius^3)``."""
     return 2 * E_star * radius, -math.sqrt(2 * math.pi * dgamma * radius / E_star)
+
+
+def johnson_wave(a, wavelength: float, amplitude: float, dgamma: float = 0.0, E_star: float = 1.0) -> np.ndarray:
+    """Johnson's (1995) adhesive wavy surface: the mean pressure at contact-strip half-widths ``a``.
+
+    The gap profile ``h = D (1 - cos(2 pi x / wavelength))`` (``D`` the amplitude) pressed by a mean
+    pressure ``p`` carries a contact strip of half-width ``a`` with
+    ``p / p* = sin^2(pi a / wavelength) - alpha sqrt(tan(pi a / wavelength))``, ``p* = pi E* D / wavelength``
+    (the mean pressure of full contact without adhesion) and
+    ``alpha = sqrt(2 wavelength dgamma / (pi^2 E* D^2))``.
+
+    Parameters
+    ----------
+    a : array_like
+        Half-widths of the contact strip, between 0 and ``wavelength / 2``.
+    wavelength, amplitude : float
+        The wave's wavelength and amplitude ``D``.
+    dgamma : float, optional
+        The work of adhesion.
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mean pressure ``p`` (compression > 0).
+
+    Examples
+    --------
+    >>> round(float(johnson_wave(0.25, 1.0, 0.01, 0.0)[()]), 6)   # sin^2(pi/4) p*
+    0.015708
+    """
+    t = np.pi * np.asarray(a, dtype=float) / wavelength
+    pstar = math.pi * E_star * amplitude / wavelength
+    alpha = math.sqrt(2 * wavelength * dgamma / (math.pi ** 2 * E_star * amplitude ** 2))
+    return pstar * (np.sin(t) ** 2 - alpha * np.sqrt(np.tan(t)))
 
 
 def tabor_lambda(s0: float, dgamma: float, R: float = 1.0, E_star: float = 1.0) -> float:

@@ -48,6 +48,10 @@ job = ["-adh_n", str(N), "-adh_size", str(N), "-adh_indenter", "rough", "-adh_hu
        "-adh_progress", "0"]
 work = tempfile.mkdtemp()
 mpirun = ["mpirun", "--oversubscribe", "-n", "2", EXE]
+# A Python process that started MPI itself (petsc4py: any use of adhbem's solver side) carries
+# Open MPI's and PMIx's variables of its own job, which would confuse mpirun started from it: the
+# jobs get the environment without them (the user's settings of running as root kept).
+env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_")) or k.startswith("OMPI_ALLOW_RUN_AS_ROOT")}
 
 
 def records(path):
@@ -67,7 +71,7 @@ def records(path):
 # progress, closes the results up to the last state (marked ``complete = 0``) and prints one line
 # saying how to go on.
 p = subprocess.Popen(mpirun + job + ["-adh_output", "run.h5", "-adh_checkpoint", "run.ck.h5"],
-                     cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                     cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
 while records(os.path.join(work, "run.csv.part")) < (5 if QUICK else 12) and p.poll() is None:
     time.sleep(0.05)
 p.send_signal(signal.SIGTERM)
@@ -81,9 +85,9 @@ with adhbem.load(os.path.join(work, "run.h5")) as r:
 # -----------------------------
 # The same command with ``-adh_restart`` goes on from the checkpoint, in the same results file.
 r = subprocess.run(mpirun + job + ["-adh_output", "run.h5", "-adh_checkpoint", "run.ck.h5",
-                                   "-adh_restart", "run.ck.h5"], cwd=work, capture_output=True, text=True, check=True)
+                                   "-adh_restart", "run.ck.h5"], cwd=work, capture_output=True, text=True, check=True, env=env)
 print("\n".join(line for line in (r.stdout + r.stderr).splitlines() if "restart" in line))
-subprocess.run(mpirun + job + ["-adh_output", "whole.h5"], cwd=work, capture_output=True, check=True)
+subprocess.run(mpirun + job + ["-adh_output", "whole.h5"], cwd=work, capture_output=True, check=True, env=env)
 with adhbem.load(os.path.join(work, "run.h5")) as r, adhbem.load(os.path.join(work, "whole.h5")) as w:
     restarted, whole = r.curve, w.curve
     print(f"restarted: {len(restarted['d'])} states, complete = {r.params['complete']}; "

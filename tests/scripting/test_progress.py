@@ -13,8 +13,11 @@ from adhbem_build import EXE
 from common import python_env
 
 RUN = [EXE, "-adh_n", "32", "-adh_gamma", "2e-3", "-adh_path", "0.02,-0.02", "-adh_steps", "12"]
-LINE = re.compile(r"^adhbem: state (\d+) of at most 12 \(d = \S+, force \S+, \d+ points in contact\): "
+LINE = re.compile(r"^adhbem: state (\d+) of at most (\d+) \(d = \S+, force \S+, \d+ points in contact\): "
                   r"(\d+) s so far, about (\d+) s left$")
+# Long enough (some 40 states of about equal cost) that a stall of the machine in one state cannot
+# swallow the lines after it: a line comes when a tenth of the time so far has passed.
+RUN_LONG = [EXE, "-adh_n", "96", "-adh_gamma", "2e-3", "-adh_path", "0.02,-0.02", "-adh_steps", "40"]
 
 
 @pytest.fixture(autouse=True)
@@ -24,10 +27,11 @@ def serial_only():
 
 
 def test_progress_lines_and_quiet():
-    r = subprocess.run(RUN + ["-adh_progress", "1e-6"], capture_output=True, text=True, timeout=120)
+    r = subprocess.run(RUN_LONG + ["-adh_progress", "1e-6"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     lines = [m for m in map(LINE.match, r.stdout.splitlines()) if m]
     states = [int(m[1]) for m in lines]
+    assert lines and all(m[2] == "40" for m in lines), r.stdout
     # the first at once, then every tenth of the time so far: a few lines, in order
     assert len(states) >= 3 and states == sorted(set(states)) and states[0] == 0, r.stdout
     r = subprocess.run(RUN + ["-adh_progress", "0"], capture_output=True, text=True, timeout=120)

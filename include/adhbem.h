@@ -196,6 +196,8 @@ PETSC_EXTERN PetscErrorCode AdhSolverSetOptionsPrefix(AdhSolver, const char[]);
 PETSC_EXTERN PetscErrorCode AdhSolverSetFromOptions(AdhSolver);
 PETSC_EXTERN PetscErrorCode AdhSolverSetUp(AdhSolver);
 
+
+/* ---- solver/impls/: the registered types: load control, detachment criterion, contact-set predictor ---- */
 /* Load control, a registered type: "displacement" (the path holds indentations d) or "force"
    (the path holds forces F; each step finds the d at which the equilibrium set carries F). */
 typedef const char *AdhControlType;
@@ -224,6 +226,8 @@ typedef const char *AdhPredictorType;
 PETSC_EXTERN PetscErrorCode AdhPredictorRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetPredictorType(AdhSolver, AdhPredictorType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetPredictorType(AdhSolver, AdhPredictorType *);
+
+/* ---- solver/interface/: the problem: option names, memory, work of adhesion field, topography ---- */
 /* The names of adhbem's own options, without the leading '-' and the prefix (adh_gamma, ...). */
 PETSC_EXTERN PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names);
 /* The memory the run needs, estimated from the grid, the boundary and the criterion (bytes, all
@@ -240,6 +244,8 @@ PETSC_EXTERN const char *const AdhTopographyKinds[];
    set-up it is kept for set-up; after set-up the profile is replaced at once and the contact
    state is cleared (start again with AdhSolverStart or AdhSolverSolvePath). */
 PETSC_EXTERN PetscErrorCode AdhSolverSetTopography(AdhSolver, Vec z, AdhTopographyKind);
+
+/* ---- solver/interface/: the path: start, steps, monitors, progress ---- */
 /* Starting state at the path's first value (an indentation d, or a force under force control):
    hertz or adhesive (loaded from first touch). It begins a new curve. */
 PETSC_EXTERN PetscErrorCode AdhSolverStart(AdhSolver, PetscReal target);
@@ -265,6 +271,8 @@ PETSC_EXTERN PetscErrorCode AdhSolverGetProgress(AdhSolver, PetscReal *seconds);
 PETSC_EXTERN PetscErrorCode AdhSolverMonitorDefault(AdhSolver, PetscInt, const AdhState *, void *);
 /* Calls the monitors with a recorded state; one that fails on any rank fails on every rank. */
 PETSC_EXTERN PetscErrorCode AdhSolverMonitor(AdhSolver, PetscInt step, const AdhState *);
+
+/* ---- solver/interface/: the state, its fields, the resolution of the adhesion, the output ---- */
 /* Whether the last step ended in pull-off (the next step starts with the bodies apart). */
 PETSC_EXTERN PetscErrorCode AdhSolverIsPulledOff(AdhSolver, PetscBool *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);

@@ -55,15 +55,25 @@ static void AvoidStaleLocks(void)
 #endif
 }
 
+/* This process's rank as the launcher (mpirun, mpiexec, srun) says it, for what is done before MPI
+   starts; NULL when run without one. */
+static const char *LauncherRank(void)
+{
+  const char *names[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "SLURM_PROCID"};
+
+  for (size_t k = 0; k < sizeof(names) / sizeof(names[0]); k++) {
+    const char *rank = getenv(names[k]);
+    if (rank) return rank;
+  }
+  return NULL;
+}
+
 /* -options_file names a file that is not there: one line, not PETSc's dump from within its
    initialisation (printed by the first rank; every rank stops before MPI starts). */
 static int CheckOptionsFiles(int argc, char **argv)
 {
-  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+  const char *rank = LauncherRank();
 
-  if (!rank) rank = getenv("PMI_RANK");
-  if (!rank) rank = getenv("PMIX_RANK");
-  if (!rank) rank = getenv("SLURM_PROCID");
   for (int k = 1; k < argc; k++) {
     const char *file = k + 1 < argc ? argv[k + 1] : NULL;
     if (strcmp(argv[k], "-options_file")) continue;
@@ -82,12 +92,9 @@ static int CheckOptionsFiles(int argc, char **argv)
    without such an option, 1 when it was printed (by this rank or the first), 2 when it failed. */
 static int PrintVersion(int argc, char **argv)
 {
-  const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+  const char *rank = LauncherRank();
   char        version[256];
 
-  if (!rank) rank = getenv("PMI_RANK");
-  if (!rank) rank = getenv("PMIX_RANK");
-  if (!rank) rank = getenv("SLURM_PROCID");
   for (int k = 1; k < argc; k++) {
     if (strcmp(argv[k], "--version") && strcmp(argv[k], "-version")) continue;
     if (rank && strcmp(rank, "0")) return 1;

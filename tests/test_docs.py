@@ -61,6 +61,7 @@ def test_every_option_in_the_reference(site):
 
 def test_tutorials_ran_with_figures(site):
     tutorials = sorted(p for p in os.listdir(os.path.join(ROOT, "tutorials")) if p.startswith("tutorial_") and p.endswith(".py"))
+    assert len(tutorials) >= 6, tutorials
     for t in tutorials:
         page = site / "tutorials" / t.replace(".py", ".html")
         assert page.exists(), t

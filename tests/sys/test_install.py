@@ -91,8 +91,7 @@ def test_installed_executable_runs_without_library_path(prefix):
     system's paths is found without LD_LIBRARY_PATH)."""
     r = run(["ldd", prefix / "bin" / "adhbem"], env=clean_env())
     line = next(v for v in r.stdout.splitlines() if "libadhbem" in v)
-    assert str(prefix / "lib") in os.path.normpath(line.split("=>")[1].split()[0]).replace("/lib/../lib", "/lib") or \
-        os.path.realpath(line.split("=>")[1].split()[0]).startswith(os.path.realpath(prefix))
+    assert os.path.realpath(line.split("=>")[1].split()[0]).startswith(os.path.realpath(prefix)), line
     out = run([prefix / "bin" / "adhbem", "--version"], env=clean_env()).stdout
     assert out.startswith("adhbem ") and "PETSc" in out
     petsc_libdir = run(["pkg-config", "--variable=libdir", "PETSc" if INDEX_BITS == 32 else "PETSc64"]).stdout.strip()

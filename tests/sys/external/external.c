@@ -12,9 +12,14 @@ int main(int argc, char **argv)
   const AdhCurve *curve;
   PetscReal       largest_tension = 0;
   char            version[256];
+  PetscInt        major, minor, patch;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(AdhGetVersion(version, sizeof(version)));
+  /* the library found at run time is the one whose header this was compiled with */
+  PetscCall(AdhGetVersionNumber(&major, &minor, &patch));
+  PetscCheck(major == ADHBEM_VERSION_MAJOR && minor == ADHBEM_VERSION_MINOR && patch == ADHBEM_VERSION_PATCH, PETSC_COMM_WORLD, PETSC_ERR_LIB,
+             "header %s, library %" PetscInt_FMT ".%" PetscInt_FMT ".%" PetscInt_FMT, ADHBEM_VERSION, major, minor, patch);
   PetscCall(AdhSolverCreate(PETSC_COMM_WORLD, &solver));
   PetscCall(AdhSolverSetFromOptions(solver));
   PetscCall(AdhSolverSetUp(solver));

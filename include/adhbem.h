@@ -18,7 +18,7 @@ PETSC_EXTERN PetscErrorCode AdhUseOneBLASThread(void);
 PETSC_EXTERN PetscErrorCode AdhGetVersion(char version[], size_t len);
 PETSC_EXTERN PetscErrorCode AdhGetVersionNumber(PetscInt *major, PetscInt *minor, PetscInt *patch);
 
-/* ---- grid/influence.c: closed-form element integrals (docs/theory/physics.md) ---- */
+/* ---- grid/influence.c: closed-form element integrals (docs/theory/model.md) ---- */
 
 /* Displacement at (x,y), relative to the centre of an hx x hy element carrying unit uniform
    pressure, on a half-space of reduced modulus E* (Love, Johnson eq. 3.25). */

@@ -66,3 +66,35 @@ def test_tutorials_ran_with_figures(site):
         page = site / "tutorials" / t.replace(".py", ".html")
         assert page.exists(), t
         assert re.search(r'<img [^>]*src="\.\./_images/sphx_glr_' + t[:-3], page.read_text()), f"{t} made no figure"
+
+
+def howto_python_blocks():
+    """(page, code) for each how-to page with Python code blocks, its blocks joined in order."""
+    folder = os.path.join(ROOT, "docs", "howto")
+    for name in sorted(os.listdir(folder)):
+        with open(os.path.join(folder, name)) as f:
+            blocks = re.findall(r"^```python\n(.*?)^```", f.read(), re.S | re.M)
+        if blocks:
+            yield name, "\n".join(blocks)
+
+
+@pytest.mark.parametrize("page,code", list(howto_python_blocks()), ids=lambda v: v if v.endswith(".md") else "")
+def test_howto_python_blocks_run(page, code, tmp_path, monkeypatch, capsys):
+    """The how-to guides' Python examples run as written (in a folder of their own), and what they
+    print is checked where they print a result against theory."""
+    monkeypatch.chdir(tmp_path)
+    if "results/rough_example.h5" in code:   # the file examples/rough.opts writes, made small here
+        import adhbem
+        os.makedirs("results")
+        adhbem.Solver(n=32, size=32.0, boundary="periodic", indenter="rough", gamma=0.01, start="adhesive",
+                      path=[0.0, 0.5, -0.5], steps=4, output="results/rough_example.h5",
+                      fields="all").solve_path(progress=False)
+    exec(compile(code, page, "exec"), {"__name__": "__howto__"})
+    out = capsys.readouterr().out
+    if page == "own-ksp.md":  # the flat punch against Boussinesq's 2 a E* d
+        F, exact = (float(x) for x in re.search(r"F = ([\d.e-]+), Boussinesq 2 a E\* d = ([\d.e-]+)", out).groups())
+        assert abs(F / exact - 1) < 0.01, out
+
+
+def test_howto_guides_have_python_examples():
+    assert {"load-control.md", "own-ksp.md"} <= {p for p, _ in howto_python_blocks()}

@@ -114,6 +114,24 @@ def test_pkg_config_program(prefix, executable_answer, tmp_path):
     assert tension > 0 and tension == pytest.approx(expected, rel=1e-12)
 
 
+def test_own_ksp_example(prefix, tmp_path):
+    """examples/c/own_ksp.c (the how-to "the compliance operator in your own KSP"), built as its
+    comment says: a flat punch's force against Boussinesq's 2 a E* d, the same on 1 and 2 ranks."""
+    env = clean_env(PKG_CONFIG_PATH=str(prefix / "lib" / "pkgconfig"))
+    flags = run(["pkg-config", "--cflags", "--libs", "adhbem"], env=env).stdout.split()
+    exe = tmp_path / "own_ksp"
+    run(["cc", os.path.join(ROOT, "examples", "c", "own_ksp.c"), "-o", str(exe), *flags], env=env)
+
+    def force(out):
+        line = out.strip().splitlines()[-1]
+        F, exact = (float(w.rstrip(",")) for w in (line.split("F = ")[1].split()[0], line.split()[-1]))
+        return F, exact
+    F2, exact = force(mpirun(exe, cwd=tmp_path).stdout)
+    F1, _ = force(run([str(exe)], cwd=tmp_path, env=clean_env()).stdout)
+    assert F1 == pytest.approx(F2, rel=1e-6)           # printed to 6 digits
+    assert abs(F2 / exact - 1) < 0.01                    # a/h = 32: the punch's edge costs 0.5%
+
+
 def test_cmake_package_program(prefix, executable_answer, tmp_path):
     """find_package(adhbem) in a CMake project of its own: adhbem::adhbem brings PETSc, MPI, FFTW."""
     build = tmp_path / "build"

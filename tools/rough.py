@@ -11,7 +11,7 @@ results/rough.png, and prints a short table and how well the grid resolves the a
 The parameters are those at which the adhesion is resolved: the smallest asperities' JKR contact
 radius at pull-off spans about 20 grid spacings, and on the same kind of surface refined from 10
 to 20 spacings (./run bench convergence --config resolved) the pull-off force and the loop's
-energy change by a few percent (docs/verification/validation.md). A shorter cut-off or a weaker adhesion makes
+energy change by a few percent (docs/verification/rough-convergence.md). A shorter cut-off or a weaker adhesion makes
 the asperity contacts a few elements wide: then the numbers depend on the grid, and the run says so.
 
 Run as `./run rough [--n N] [--np P] [--gamma G] [--cutoff C] [--steps K]`. The solve runs under mpirun on P

@@ -46,7 +46,7 @@
    time, for a cache of each set's walks along the front (about 1 kB a front point). With this criterion
    -adh_cascade_local is inf, the whole grid, by default under displacement control.
 
-   Measured (./run bench criterion, docs/verification/validation.md): the work of adhesion it acts with is within 1.4% of dgamma on
+   Measured (./run bench criterion, docs/verification/johnson-wave.md, jkr-sphere.md): the work of adhesion it acts with is within 1.4% of dgamma on
    straight edges in the six directions measured (0 to 45 degrees), within 0.2% on the JKR sphere at a_c/h 25 to 100,
    converging on the cone and the punch; pohrt-popov's: 1.02 to 1.88 on the straight edges, 0-6% high on the curved
    ones.

@@ -13,6 +13,7 @@ import re
 from dataclasses import dataclass, field
 
 # -PREFIXadh_NAME[:] <DEFAULT>[:] TEXT [(choose one of) | (one of) CHOICES] (MANUAL PAGE)
+_ARRAY_DEFAULT = re.compile(r"; default (?P<values>[-+0-9.e]+(?:,[-+0-9.e]+)+) \(-help shows")
 _LINE = re.compile(r"^\s+-\w*?adh_(?P<name>\w+)(?P<boolcolon>:?) <(?P<default>[^>]*)>:? (?P<text>.*) \((?P<man>[^()]*)\)$")
 _CHOICES = re.compile(r"^(?P<text>.*?) \((?:choose )?one of\) (?P<choices>.*)$")
 _FORMERLY = re.compile(r"^now (?P<now>.*?) : formerly .*$")
@@ -122,6 +123,10 @@ def parse_help(text: str) -> list[Option]:
             default = values[0] if len(values) == 1 else values
             if kind == "real list":
                 default = float(default) if len(values) == 1 else [float(v) for v in values]
+            whole = _ARRAY_DEFAULT.search(body)  # -help prints an unset array's first value only
+            if whole:
+                raw = whole["values"]
+                default = [float(v) for v in raw.split(",")]
         if _not_set(default):
             default = None
         options.append(Option(name, group, kind, raw, default, body.strip(), choices))

@@ -125,7 +125,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (set) s->boundary_set = PETSC_TRUE;
   PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", AdhControls.list, s->control_type, control, sizeof(control), &set));
   if (set) PetscCall(AdhSolverSetControlType(s, control));
-  PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force)", "AdhSolver", path, &n, &set));
+  PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force); default 0.01,0 (-help shows an array's first value only)", "AdhSolver", path, &n, &set));
   if (set) {
     PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
     PetscCall(PetscFree(s->path));

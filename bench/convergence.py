@@ -68,7 +68,7 @@ the table says so.
 
     ./run bench convergence [--config unresolved|moderate|resolved|all] [--quick] [--n N1,N2,N3] [--np P]
         [--steps K] [--legs 3|2] [--gamma G] [--criteria pohrt-popov,crack-closure] [--seed S] [--depth F]
-        [--perturb K [--perturb-size EPS] [--perturb-first M]] [--json FILE] [--keep DIR] [-- OPTIONS]
+        [--perturb K [--perturb-size EPS] [--perturb-first M]] [--json FILE] [--plot PNG] [--keep DIR] [-- OPTIONS]
 
 --gamma overrides the configurations' dgamma (units of the coarsest spacing, E* = 1); --keep DIR
 keeps each run's results file (CONFIG_CRITERION_N.h5 and .csv); further adhbem options go after --.
@@ -441,6 +441,37 @@ def study(name, a, sizes, criteria):
                 results={crit: {str(n): v for n, v in results[crit].items()} for crit in criteria})
 
 
+def plot(out, file):
+    """The largest tension and the loop's energy against the asperities' a_c/h, a line a criterion,
+    with each criterion's Richardson limit (dashed; dotted where the order is assumed; its error
+    bar shaded): one row a configuration."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    shown = (("largest_tension", "largest tension"), ("loop_energy", "energy dissipated over the loop"))
+    configs = out["configurations"]
+    fig, axes = plt.subplots(len(configs), 2, figsize=(8, 3.2 * len(configs)), layout="constrained", squeeze=False)
+    for row, c in zip(axes, configs):
+        x = [c["a_c_over_h"][str(n)] for n in c["grids"]]
+        for ax, (key, label) in zip(row, shown):
+            for m, crit in zip("os^v", c["results"]):
+                y = [c["results"][crit][str(n)]["quantities"][key] for n in c["grids"]]
+                line, = ax.plot(x, y, m + "-", ms=6, lw=1, label=crit + (" (default)" if crit == "crack-closure" else ""))
+                r = c["richardson"][crit][key]
+                if r["f_inf"] is not None:  # dotted where the order is assumed (1), not observed
+                    ax.axhline(r["f_inf"], color=line.get_color(), lw=0.8, ls="--" if r["p"] is not None else ":")
+                    ax.axhspan(r["f_inf"] - r["error"], r["f_inf"] + r["error"], color=line.get_color(), alpha=0.12, lw=0)
+            ax.set_xscale("log", base=2)
+            ax.set_xticks(x, [f"{v:.3g}" for v in x])
+            ax.minorticks_off()
+            ax.set_xlabel("$a_c/h$ of the smallest asperities")
+            ax.set_ylabel(label)
+            ax.set_title(f"{c['configuration']}: {label}", fontsize=9)
+        row[0].legend(fontsize=8)
+    fig.savefig(file, dpi=110)
+    print(f"figure: {file}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  epilog="See the module docstring (bench/convergence.py) for the method.")
@@ -465,6 +496,8 @@ def main():
     ap.add_argument("--perturb-first", type=int, default=0, metavar="M",
                     help="number the perturbations from M (default 0): a second ensemble of other samples, for bench work_precision's A.json+B.json")
     ap.add_argument("--json", help="write all numbers to this JSON file")
+    ap.add_argument("--plot", help="draw the largest tension and the loop's energy against a_c/h into this PNG "
+                                   "(with each criterion's Richardson limit and its error bar)")
     ap.add_argument("--keep", help="keep the results files in this directory")
     ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
     a = ap.parse_args()
@@ -486,6 +519,8 @@ def main():
         with open(a.json, "w") as f:
             json.dump(finite(out), f, indent=1)
         print(f"\nwrote {a.json}")
+    if a.plot:
+        plot(out, a.plot)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """./run bench verify --quick: every analytic verification case runs, draws its figure and prints
 its tables; from its --json output, crack-closure's JKR pull-off under force control is within 3%
 of F_adh = 1.5 pi dgamma R at every grid and Hertz's force within 2% at every state (the quick
-grids; the full-size figures are in docs/_static/verification/). About 20 s serial."""
+grids; the full-size figures are in docs/_static/verification/), and bench convergence's --plot draws. About 20 s serial."""
 import json
 import os
 import subprocess
@@ -58,3 +58,23 @@ def test_jkr_pull_off_of_crack_closure_within_3_percent(quick):
     # the paper's criterion comes off high on the coarse grids and nearer F_adh on the finer
     pp = [run["ratio"] for _, run in sorted(pull["pohrt-popov"].items(), key=lambda kv: float(kv[0]))]
     assert pp[0] > pp[-1] > 1.0
+
+
+def test_convergence_plot_draws_from_its_json(tmp_path):
+    """bench convergence --plot draws from the numbers it writes with --json (here three grids'
+    worth of them, with their Richardson estimates made by the bench's own function)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("bench_convergence", os.path.join(ROOT, "bench", "convergence.py"))
+    convergence = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(convergence)
+    grids = [64, 128, 256]
+    values = {"pohrt-popov": {"largest_tension": [165.0, 166.1, 167.9], "loop_energy": [65.2, 75.7, 77.2]},
+              "crack-closure": {"largest_tension": [136.9, 147.7, 147.5], "loop_energy": [45.9, 41.6, 41.9]}}
+    config = dict(configuration="resolved", grids=grids, a_c_over_h={str(n): 5.0 * n / 64 for n in grids},
+                  results={c: {str(n): {"quantities": {k: v[i] for k, v in q.items()}} for i, n in enumerate(grids)}
+                           for c, q in values.items()},
+                  richardson={c: {k: convergence.richardson(v) for k, v in q.items()} for c, q in values.items()})
+    out = json.loads(json.dumps(convergence.finite({"configurations": [config]})))
+    png = tmp_path / "convergence.png"
+    convergence.plot(out, str(png))
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000

@@ -1,5 +1,6 @@
 """Closed forms the solver is validated against: the JKR sphere (Johnson, Kendall & Roberts 1971),
-the JKR-type cone, Kendall's flat punch (1971), Johnson's adhesive wavy surface (1995), and Maugis' finite-range (Dugdale) adhesion of a
+the JKR-type cone, Kendall's flat punch (1971), Westergaard's wavy surface (1939), Johnson's adhesive wavy
+surface (1995), and Maugis' finite-range (Dugdale) adhesion of a
 sphere, in the notation of Johnson & Greenwood (1997).
 
 The JKR limit (zero range), for a contact radius ``a``, work of adhesion ``dgamma`` and reduced
@@ -61,6 +62,15 @@ def jkr_sphere(a, R: float = 1.0, dgamma: float = 0.0, E_star: float = 1.0) -> t
 def jkr_pulloff(R: float, dgamma: float, E_star: float = 1.0) -> tuple[float, float]:
     """The JKR sphere's pull-off: the largest tension ``1.5 pi dgamma R`` and its contact radius.
 
+    Parameters
+    ----------
+    R : float
+        The sphere's radius.
+    dgamma : float
+        The work of adhesion.
+    E_star : float, optional
+        The reduced modulus.
+
     Returns
     -------
     F_adh, a_c : float
@@ -69,10 +79,52 @@ def jkr_pulloff(R: float, dgamma: float, E_star: float = 1.0) -> tuple[float, fl
     return 1.5 * math.pi * dgamma * R, (9 * math.pi * dgamma * R ** 2 / (8 * E_star)) ** (1.0 / 3.0)
 
 
+def jkr_dgamma(a_c: float, R: float = 1.0, E_star: float = 1.0) -> float:
+    """The work of adhesion that gives the JKR sphere the pull-off contact radius ``a_c``.
+
+    Parameters
+    ----------
+    a_c : float
+        The contact radius at pull-off (choose it in grid spacings to set the resolution).
+    R : float, optional
+        The sphere's radius.
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    float
+        ``8 E* a_c^3 / (9 pi R^2)``, the inverse of ``jkr_pulloff``'s radius.
+
+    Examples
+    --------
+    >>> round(jkr_pulloff(1.0, jkr_dgamma(0.1))[1], 12)
+    0.1
+    """
+    return 8 * E_star * a_c ** 3 / (9 * math.pi * R ** 2)
+
+
 def jkr_cone(a, slope: float, dgamma: float = 0.0, E_star: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """The JKR-type cone of surface slope ``slope`` (Maugis & Barquins): indentation and force at
     contact radii ``a``: ``d = pi a slope / 2 - sqrt(2 pi dgamma a / E*)``,
-    ``F = pi E* a^2 slope / 2 - sqrt(8 pi dgamma E* a^3)``."""
+    ``F = pi E* a^2 slope / 2 - sqrt(8 pi dgamma E* a^3)``.
+
+    Parameters
+    ----------
+    a : array_like
+        Contact radii.
+    slope : float
+        The cone's surface slope (``h = slope r``).
+    dgamma : float, optional
+        The work of adhesion (0: Sneddon's cone).
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    d, F : numpy.ndarray
+        The indentation and the force at each radius.
+    """
     a = np.asarray(a, dtype=float)
     return (math.pi / 2 * a * slope - np.sqrt(2 * math.pi * dgamma * a / E_star),
             math.pi / 2 * E_star * a ** 2 * slope - np.sqrt(8 * math.pi * dgamma * E_star * a ** 3))
@@ -81,7 +133,22 @@ def jkr_cone(a, slope: float, dgamma: float = 0.0, E_star: float = 1.0) -> tuple
 def kendall_punch(radius: float, dgamma: float, E_star: float = 1.0) -> tuple[float, float]:
     """Kendall's flat punch of radius ``radius``: its stiffness ``2 E* radius`` (``F = 2 E* radius d``
     while in contact) and the indentation at which it comes off, ``-sqrt(2 pi dgamma radius / E*)``;
-    the pull-off force is the stiffness times that, ``sqrt(8 pi dgamma E* radius^3)``."""
+    the pull-off force is the stiffness times that, ``sqrt(8 pi dgamma E* radius^3)``.
+
+    Parameters
+    ----------
+    radius : float
+        The punch's radius.
+    dgamma : float
+        The work of adhesion.
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    stiffness, d_c : float
+        ``2 E* radius`` and ``-sqrt(2 pi dgamma radius / E*)``.
+    """
     return 2 * E_star * radius, -math.sqrt(2 * math.pi * dgamma * radius / E_star)
 
 
@@ -121,6 +188,84 @@ def johnson_wave(a, wavelength: float, amplitude: float, dgamma: float = 0.0, E_
     return pstar * (np.sin(t) ** 2 - alpha * np.sqrt(np.tan(t)))
 
 
+def westergaard_wave(pbar: float, wavelength: float, amplitude: float, E_star: float = 1.0,
+                     samples: int = 2 ** 20) -> tuple[float, float, float]:
+    """Westergaard's wavy surface without adhesion at the mean pressure ``pbar``: the contact's
+    half-width and the indentation.
+
+    The gap profile ``h = D (1 - cos(2 pi x / wavelength))`` pressed to ``pbar`` (below
+    ``p* = pi E* D / wavelength``, full contact) is in contact where ``|x| < a``,
+    ``sin^2(pi a / wavelength) = pbar / p*``, under the pressure ``westergaard_pressure``. The
+    indentation ``d`` is adhbem's: the approach relative to the mean plane of the deformed surface,
+    ``d = h + u`` on the contact with ``u`` of zero mean, computed from the exact pressure sampled on
+    ``samples`` points (its periodic displacement by FFT, the multiplier ``2/(E* q)``).
+
+    Parameters
+    ----------
+    pbar : float
+        The mean pressure, ``0 < pbar < p*``.
+    wavelength, amplitude : float
+        The wave's wavelength and amplitude ``D``.
+    E_star : float, optional
+        The reduced modulus.
+    samples : int, optional
+        Points of the sampled pressure (the indentation's error falls like its square).
+
+    Returns
+    -------
+    a, d, spread : float
+        The half-width, the indentation, and ``max - min`` of ``h + u`` over the contact (0 for the
+        exact solution: the sampling's error).
+
+    Examples
+    --------
+    >>> a, d, spread = westergaard_wave(0.5 * math.pi * 0.01, 1.0, 0.01)
+    >>> round(a, 6), spread < 1e-8
+    (0.25, True)
+    """
+    x = (np.arange(samples) - samples // 2) * wavelength / samples
+    a = wavelength / math.pi * math.asin(math.sqrt(pbar / (math.pi * E_star * amplitude / wavelength)))
+    p = westergaard_pressure(x, pbar, wavelength, amplitude, E_star)
+    ph = np.fft.rfft(p)
+    q = 2 * math.pi * np.arange(len(ph)) / wavelength
+    multiplier = np.zeros_like(q)
+    multiplier[1:] = 2 / (E_star * q[1:])
+    u = np.fft.irfft(ph * multiplier, samples)
+    hu = (amplitude * (1 - np.cos(2 * math.pi * x / wavelength)) + u)[np.abs(x) < a]
+    return a, float(hu.mean()), float(hu.max() - hu.min())
+
+
+def westergaard_pressure(x, pbar: float, wavelength: float, amplitude: float, E_star: float = 1.0) -> np.ndarray:
+    """The pressure of Westergaard's wavy surface at ``x`` (``|x| <= wavelength/2``) under the mean
+    pressure ``pbar``: ``2 pbar cos(pi x/wavelength) sqrt(s^2 - sin^2(pi x/wavelength)) / s^2``,
+    ``s^2 = pbar / p*``, in the contact and 0 outside it (``westergaard_wave`` has the notation).
+
+    Parameters
+    ----------
+    x : array_like
+        Positions along the wave, its crest (the first contact) at 0.
+    pbar : float
+        The mean pressure, below ``p* = pi E* D / wavelength``.
+    wavelength, amplitude : float
+        The wave's wavelength and amplitude ``D``.
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    numpy.ndarray
+        The pressure at ``x``.
+
+    Examples
+    --------
+    >>> round(float(westergaard_pressure(0.0, 0.5 * math.pi * 0.01, 1.0, 0.01)), 6)   # 2 pbar / s
+    0.044429
+    """
+    s2 = pbar / (math.pi * E_star * amplitude / wavelength)
+    t = math.pi * np.asarray(x, dtype=float) / wavelength
+    return 2 * pbar * np.cos(t) / s2 * np.sqrt(np.maximum(s2 - np.sin(t) ** 2, 0.0))
+
+
 def tabor_lambda(s0: float, dgamma: float, R: float = 1.0, E_star: float = 1.0) -> float:
     """The Tabor-Maugis parameter of a sphere.
 
@@ -147,6 +292,35 @@ def tabor_lambda(s0: float, dgamma: float, R: float = 1.0, E_star: float = 1.0) 
     """
     K = 4.0 * E_star / 3.0
     return 2.0 * s0 * (R / (math.pi * dgamma * K * K)) ** (1.0 / 3.0)
+
+
+def maugis_scales(dgamma: float, R: float = 1.0, E_star: float = 1.0) -> tuple[float, float, float]:
+    """Johnson & Greenwood's units of Maugis' sphere, to turn ``maugis_sphere`` into forces and lengths.
+
+    Parameters
+    ----------
+    dgamma : float
+        The work of adhesion.
+    R : float, optional
+        The sphere's radius.
+    E_star : float, optional
+        The reduced modulus.
+
+    Returns
+    -------
+    force, radius, indentation : float
+        ``pi dgamma R``, ``(pi dgamma R^2 / K)^(1/3)`` and ``(pi^2 dgamma^2 R / K^2)^(1/3)``,
+        ``K = 4 E*/3``: ``F = P force``, ``a = A radius``, ``d = D indentation``.
+
+    Examples
+    --------
+    >>> F, a, d = maugis_scales(0.004655)
+    >>> round(-maugis_pulloff(1.0)[0] * F, 5)     # the pull-off force at lambda 1
+    0.02341
+    """
+    K = 4.0 * E_star / 3.0
+    return (math.pi * dgamma * R, (math.pi * dgamma * R ** 2 / K) ** (1.0 / 3.0),
+            (math.pi ** 2 * dgamma ** 2 * R / K ** 2) ** (1.0 / 3.0))
 
 
 def _zone_ratio(lam: float, A: float) -> float:

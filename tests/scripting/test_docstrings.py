@@ -10,7 +10,10 @@ from adhbem import grid, plot, results, solver, surface, theory, topography
 PUBLIC = [grid.compliance, grid.compliance_info, grid.grid_shape, grid.row_range, grid.local_rows,
           grid.set_local_rows, grid.gather, surface.rough_surface, results.load, topography.is_surface_topography,
           topography.from_surface_topography, plot.curve, plot.area, plot.contact_map, plot.resolution,
-          plot.figure, plot.plot, theory.tabor_lambda, theory.maugis_sphere, theory.maugis_pulloff]
+          plot.figure, plot.plot]
+# every closed form of adhbem.theory, found rather than listed, so a new one cannot skip its docstring
+PUBLIC += [f for name, f in vars(theory).items()
+           if inspect.isfunction(f) and not name.startswith("_") and f.__module__ == theory.__name__]
 
 
 def methods(cls):

@@ -39,6 +39,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import adhbem  # noqa: E402
+from adhbem import theory  # noqa: E402
 
 E = 1.0
 # solver options every case gets (--radius): the sets only let go (a point that joins on unloading
@@ -145,7 +146,7 @@ def sphere(ac_over_h, criterion, R=1.0):
     ac = 0.3125
     N = int(round(160 * ac_over_h / 50))
     hgrid = 1.0 / N
-    dgamma = ac ** 3 * 8 * E / (9 * math.pi * R ** 2)
+    dgamma = theory.jkr_dgamma(ac, R, E)
     Fadh = 1.5 * math.pi * dgamma * R
     dc = (3 * math.pi ** 2 * dgamma ** 2 * R / (64 * E ** 2)) ** (1 / 3)
     s = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=dgamma, radius=R, start="hertz", criterion=criterion,

@@ -27,10 +27,9 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
-from adhbem.theory import maugis_pulloff, maugis_sphere, tabor_lambda  # noqa: E402  (numpy only)
+from adhbem.theory import maugis_pulloff, maugis_scales, maugis_sphere, tabor_lambda  # noqa: E402  (numpy only)
 
 GAMMA = 0.004655
-K = 4.0 / 3.0
 
 
 def case(lam, width):
@@ -38,14 +37,13 @@ def case(lam, width):
     and Maugis' pull-off force, its contact radius and zone width."""
     P, A, D = maugis_pulloff(lam)
     m = float(maugis_sphere(lam, [A])[2][0])
-    ascale = (math.pi * GAMMA / K) ** (1 / 3)
+    force, ascale, dscale = maugis_scales(GAMMA)
     a, zone = A * ascale, (m - 1) * A * ascale
     h = zone / width
     L = 4.0 * m * a  # the contact with its zone, twice over
     N = 2 * math.ceil(L / h / 2)
     s0 = lam / tabor_lambda(1.0, GAMMA)
-    dscale = (math.pi ** 2 * GAMMA ** 2 / K ** 2) ** (1 / 3)
-    return s0, N, N * h, -P * math.pi * GAMMA, a, zone, D * dscale
+    return s0, N, N * h, -P * force, a, zone, D * dscale
 
 
 def run(lam, width, steps, np_):

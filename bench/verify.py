@@ -197,33 +197,14 @@ LAM, D_WAVE = 1.0, 0.01
 P_STAR = math.pi * E * D_WAVE / LAM
 
 
-def westergaard_exact(pbar, M=2 ** 20):
-    """(a, d) of Westergaard's solution at mean pressure pbar: the contact half-width from
-    sin^2(pi a/lam) = pbar/p*, and d from the exact pressure sampled on M points, its zero-mean
-    displacement (multiplier 2/(E* q)) and d = h + u on the contact (as tests/solver/test_periodic.py)."""
-    s2 = pbar / P_STAR
-    a = LAM / math.pi * math.asin(math.sqrt(s2))
-    x = (np.arange(M) - M // 2) * LAM / M
-    on = np.abs(x) < a
-    p = np.zeros(M)
-    p[on] = westergaard_pressure(x[on], pbar)
-    ph = np.fft.rfft(p)
-    q = 2 * np.pi * np.arange(len(ph)) / LAM
-    mult = np.zeros_like(q)
-    mult[1:] = 2 / (E * q[1:])
-    u = np.fft.irfft(ph * mult, M)
-    return a, float((D_WAVE * (1 - np.cos(2 * np.pi * x / LAM)) + u)[on].mean())
-
-
 def westergaard_pressure(x, pbar):
-    s2 = pbar / P_STAR
-    return 2 * pbar * np.cos(np.pi * x / LAM) / s2 * np.sqrt(np.maximum(s2 - np.sin(np.pi * x / LAM) ** 2, 0))
+    return theory.westergaard_pressure(x, pbar, LAM, D_WAVE, E)
 
 
 def case_westergaard(quick, out):
     grids = (64, 128, 256) if quick else (64, 128, 256, 512, 1024, 2048, 4096)
     loads = (0.3, 0.6)
-    exact = {f: westergaard_exact(f * P_STAR) for f in loads}
+    exact = {f: theory.westergaard_wave(f * P_STAR, LAM, D_WAVE, E)[:2] for f in loads}
     res, rows = {}, []
     for N in grids:
         x = (np.arange(N) - N // 2) * LAM / N
@@ -288,6 +269,13 @@ def case_westergaard(quick, out):
 CRITERIA = ("crack-closure", "pohrt-popov")
 
 
+def log2_axis(ax, x, right=1.3):
+    """A log2 x axis ticked at the grids x, with a margin either side."""
+    ax.set_xscale("log", base=2)
+    ax.set_xticks(x, [f"{q:g}" for q in x])
+    ax.minorticks_off()
+    ax.set_xlim(x[0] / 1.3, x[-1] * right)
+
 
 def convergence_panel(ax, x, ratios, reference, margin, colours=None):
     """The pull-off over its closed form against the resolution x (log2 axis), one line a
@@ -297,21 +285,15 @@ def convergence_panel(ax, x, ratios, reference, margin, colours=None):
     for m, crit in zip("os", CRITERIA):
         ax.plot(x, ratios[crit], m + "-", ms=6, lw=1, color=(colours or {}).get(crit),
                 label=crit + (" (default)" if crit == "crack-closure" else ""))
-    ax.set_xscale("log", base=2)
-    ax.set_xticks(x, [f"{q:g}" for q in x])
-    ax.minorticks_off()
-    ax.set_xlim(x[0] / 1.3, x[-1] * 1.3)
+    log2_axis(ax, x)
     vals = [v for crit in CRITERIA for v in ratios[crit]]
     ax.set_ylim(min(min(vals), 1.0) - margin, max(max(vals), 1.0) + margin)
-
-def jkr_gamma(ac, R=1.0):
-    return 8 * E * ac ** 3 / (9 * math.pi * R ** 2)
 
 
 def case_jkr(quick, out):
     R, ac = 1.0, 0.3125
     ratios = (12.5, 25.0) if quick else (12.5, 25.0, 50.0)
-    g = jkr_gamma(ac, R)
+    g = theory.jkr_dgamma(ac, R, E)
     F_adh, _ = theory.jkr_pulloff(R, g, E)
     dc = -float(theory.jkr_sphere(ac, R, g, E)[0])          # a_c^2/(3R): d at the force-controlled pull-off
     # the pull-off under force control, L = 1, N = a_c/h / a_c
@@ -509,10 +491,7 @@ def case_wave(quick, out):
 
 def case_maugis(quick, out):
     G, lam, R = 0.004655, 1.0, 1.0
-    K = 4.0 * E / 3.0
-    FSCALE = math.pi * G * R
-    ASCALE = (math.pi * G * R ** 2 / K) ** (1 / 3)
-    DSCALE = (math.pi ** 2 * G ** 2 * R / K ** 2) ** (1 / 3)
+    FSCALE, ASCALE, DSCALE = theory.maugis_scales(G, R, E)
     s0 = lam / theory.tabor_lambda(1.0, G, R, E)
     P, A_off, D_off = theory.maugis_pulloff(lam)
     F_m = -P * FSCALE
@@ -574,10 +553,7 @@ def case_maugis(quick, out):
              label="first-order extrapolation\nof the grid and the one before")
     for N in grids:
         ax2.annotate(f"zone {res[N]['width']:.0f} h", (N, res[N]["ratio"]), textcoords="offset points", xytext=(7, -3), fontsize=7)
-    ax2.set_xscale("log", base=2)
-    ax2.set_xticks(x, [f"{int(n)}" for n in x])
-    ax2.minorticks_off()
-    ax2.set_xlim(x[0] / 1.3, x[-1] * 1.7)
+    log2_axis(ax2, x, right=1.7)
     vals = [res[N]["ratio"] for N in grids] + [res[N]["extrapolated"] for N in grids[1:]]
     ax2.set_ylim(min(min(vals), 1.0) - 0.01, max(max(vals), 1.0) + 0.015)
     ax2.set_xlabel("grid $N$ (side 1)")

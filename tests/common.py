@@ -6,7 +6,7 @@ import os
 
 import numpy as np
 import adhbem
-from adhbem import PETSc
+from adhbem import PETSc, theory
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # the project
 
@@ -55,8 +55,8 @@ def jkr_scales(gamma, R=R, E=E):
 
 
 def gamma_for(ac, R=R, E=E):
-    """The work of adhesion that gives the JKR critical radius a_c."""
-    return ac ** 3 * 8 * E / (9 * math.pi * R ** 2)
+    """The work of adhesion that gives the JKR critical radius a_c (with the tests' R and E*)."""
+    return theory.jkr_dgamma(ac, R, E)
 
 
 def label_patches(mask, wrap):

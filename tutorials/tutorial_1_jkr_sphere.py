@@ -32,7 +32,7 @@ N = 64 if QUICK else 128
 R, E_star, size = 1.0, 1.0, 1.0
 h = size / N
 a_c = 12 * h                                     # the wanted contact radius at pull-off
-dgamma = 8 * E_star * a_c ** 3 / (9 * np.pi * R ** 2)
+dgamma = theory.jkr_dgamma(a_c, R, E_star)        # the work of adhesion that gives it
 F_adh, a_c = theory.jkr_pulloff(R, dgamma, E_star)
 print(f"dgamma = {dgamma:.4g}, F_adh = 1.5 pi dgamma R = {F_adh:.4g}, a_c = {a_c / h:.1f} spacings")
 

@@ -12,15 +12,12 @@ import pytest
 
 import adhbem
 from adhbem import PETSc
-from adhbem.theory import maugis_pulloff, maugis_sphere, tabor_lambda
+from adhbem.theory import maugis_pulloff, maugis_scales, maugis_sphere, tabor_lambda
 from adhbem_build import EXE
 from common import _max, _min, say
 
 GAMMA = 0.004655  # E* = R = 1: the pull-off contact radius about 0.2 at lambda = 1
-K = 4.0 / 3.0
-FSCALE = math.pi * GAMMA  # pi dgamma R
-ASCALE = (math.pi * GAMMA / K) ** (1 / 3)  # a = A ASCALE
-DSCALE = (math.pi ** 2 * GAMMA ** 2 / K ** 2) ** (1 / 3)  # d = D DSCALE
+FSCALE, ASCALE, DSCALE = maugis_scales(GAMMA)  # F = P FSCALE, a = A ASCALE, d = D DSCALE
 
 
 def s0_for(lam):

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import adhbem
-from adhbem import PETSc
+from adhbem import PETSc, theory
 from adhbem_build import EXE
 from common import _max, _min, assembled, gamma_for, jkr_scales, label_patches, rank0, say  # noqa: E402
 
@@ -44,23 +44,12 @@ WAVE_GRIDS = (64, 128, 256, 512, 1024)
 
 
 def westergaard_exact(pbar, M=2 ** 20):
-    """(a, d, spread, mean error) of Westergaard's solution at mean pressure pbar: the contact
-    half-width from sin^2(pi a/lam) = pbar/p*, and d from the exact pressure sampled on M points,
-    its zero-mean displacement (multiplier 2/(E* q)) and d = h + u on the contact. spread is
-    max - min of h + u over the contact, mean error the sampled pressure's mean / pbar - 1."""
-    s2 = pbar / P_STAR
-    a = LAM / math.pi * math.asin(math.sqrt(s2))
+    """(a, d, spread, mean error) of Westergaard's solution at mean pressure pbar (adhbem.theory's,
+    sampled on M points): spread is max - min of h + u over the contact, mean error the sampled
+    pressure's mean / pbar - 1 (both measure the reference's own sampling)."""
+    a, d, spread = theory.westergaard_wave(pbar, LAM, D_WAVE, E, samples=M)
     x = (np.arange(M) - M // 2) * LAM / M
-    on = np.abs(x) < a
-    p = np.zeros(M)
-    p[on] = 2 * pbar * np.cos(np.pi * x[on] / LAM) / s2 * np.sqrt(np.maximum(s2 - np.sin(np.pi * x[on] / LAM) ** 2, 0))
-    ph = np.fft.rfft(p)
-    q = 2 * np.pi * np.arange(len(ph)) / LAM
-    mult = np.zeros_like(q)
-    mult[1:] = 2 / (E * q[1:])
-    u = np.fft.irfft(ph * mult, M)
-    hu = (D_WAVE * (1 - np.cos(2 * np.pi * x / LAM)) + u)[on]
-    return a, hu.mean(), hu.max() - hu.min(), p.mean() / pbar - 1
+    return a, d, spread, theory.westergaard_pressure(x, pbar, LAM, D_WAVE, E).mean() / pbar - 1
 
 
 def wave_gap(N):

@@ -77,17 +77,17 @@ int main(int argc, char **argv)
   PetscCall(KSPSetOperators(ksp, A, A));
   PetscCall(KSPSetType(ksp, KSPCG));
   PetscCall(KSPSetTolerances(ksp, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCall(KSPSetFromOptions(ksp));
   {
     PC pc;
     PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCSetType(pc, PCNONE));
+    PetscCall(PCSetType(pc, PCNONE)); /* a shell of one's own has no diagonal for Jacobi */
   }
+  PetscCall(KSPSetFromOptions(ksp)); /* last, so that -ksp_type, -pc_type, ... can change the above */
   PetscCall(KSPSolve(ksp, u, p));
   PetscCall(KSPGetIterationNumber(ksp, &its));
   PetscCall(VecSum(p, &F));
   F *= hx * hy;
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " CG iterations; F = %.6g, Boussinesq 2 a E* d = %.6g\n", its, (double)PetscRealPart(F), (double)(2 * a * E_star * d)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " Krylov iterations; F = %.6g, Boussinesq 2 a E* d = %.6g\n", its, (double)PetscRealPart(F), (double)(2 * a * E_star * d)));
 
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&A));

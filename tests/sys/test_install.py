@@ -11,7 +11,6 @@ at where a thing was found.
 import json
 import os
 import subprocess
-import sys
 
 import h5py
 import pytest

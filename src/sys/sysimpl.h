@@ -27,7 +27,7 @@ PETSC_INTERN PetscErrorCode AdhRegistryGetNames_Private(AdhRegistry *, PetscInt 
 PETSC_INTERN PetscErrorCode AdhRegistryDestroy_Private(AdhRegistry *);
 
 /* The version (version.c): PETSc's as the process runs it ("3.18.5"), and the check, when the
-   package initialises, that it is the major.minor, the index size and the scalar type adhbem was
+   package initialises, that it is the major.minor and the index size adhbem was
    built against. */
 PETSC_INTERN PetscErrorCode AdhGetPETScVersion_Private(char version[], size_t len);
 PETSC_INTERN PetscErrorCode AdhCheckPETSc_Private(void);

@@ -70,22 +70,22 @@ PetscErrorCode AdhGetPETScVersion_Private(char version[], size_t len)
 
 /* PETSc changes its ABI between minor releases: a library built against 3.18 that finds 3.19 at run time
    (a PETSc built from source whose library name does not carry its version, first on LD_LIBRARY_PATH) would
-   misread its structs; so would one that finds a PETSc of other indices or scalars (the 64-bit-index or complex
-   build under the same name). Checked once, when the package initialises, on every rank alike (the error is
-   raised on PETSC_COMM_WORLD, so it is reported once). */
+   misread its structs; so would one that finds a PETSc of other indices (the 64-bit-index build under the same
+   name). Checked once, when the package initialises, on every rank alike (the error is raised on
+   PETSC_COMM_WORLD, so it is reported once). The scalar type is not checked: PETSC_SCALAR is this file's macro
+   (PETSC_DOUBLE here), so the library could only confirm the size of a double; Debian's complex PETSc has
+   a library name of its own. */
 PetscErrorCode AdhCheckPETSc_Private(void)
 {
   PetscInt major, minor;
-  size_t   isize, ssize;
+  size_t   isize;
 
   PetscFunctionBegin;
   PetscCall(PetscGetVersionNumber(&major, &minor, NULL, NULL));
   PetscCheck(major == PETSC_VERSION_MAJOR && minor == PETSC_VERSION_MINOR, PETSC_COMM_WORLD, PETSC_ERR_LIB,
              "adhbem %s was built against PETSc %d.%d but runs with PETSc %" PetscInt_FMT ".%" PetscInt_FMT ": rebuild adhbem against this PETSc, or run it with the one it was built against",
              ADHBEM_VERSION, PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR, major, minor);
-  PetscCall(PetscDataTypeGetSize(PETSC_INT, &isize));     /* the library's, not this file's */
-  PetscCall(PetscDataTypeGetSize(PETSC_SCALAR, &ssize));
+  PetscCall(PetscDataTypeGetSize(PETSC_INT, &isize)); /* PETSC_INT is an enum value: the size is the library's */
   PetscCheck(isize == sizeof(PetscInt), PETSC_COMM_WORLD, PETSC_ERR_LIB, "adhbem %s was built against a PETSc with %d-bit indices but runs with one with %d-bit indices: rebuild adhbem against this PETSc, or run it with the one it was built against", ADHBEM_VERSION, (int)(8 * sizeof(PetscInt)), (int)(8 * isize));
-  PetscCheck(ssize == sizeof(PetscScalar), PETSC_COMM_WORLD, PETSC_ERR_LIB, "adhbem %s was built against a PETSc with %s scalars but runs with one with %s scalars: rebuild adhbem against this PETSc, or run it with the one it was built against", ADHBEM_VERSION, sizeof(PetscScalar) == sizeof(PetscReal) ? "real" : "complex", ssize == sizeof(PetscReal) ? "real" : "complex");
   PetscFunctionReturn(0);
 }

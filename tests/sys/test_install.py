@@ -168,24 +168,34 @@ def test_cmake_package_refuses_another_version(prefix, tmp_path):
     assert r.returncode != 0 and "adhbem" in r.stderr and "9.0" in r.stderr
 
 
+# What another PETSc would say, interposed before libpetsc's (as a PETSc whose library name does not
+# carry its version or index size, first on the library path, would give), and what adhbem must answer.
+OTHER_PETSC = {
+    "version": ("PetscErrorCode PetscGetVersionNumber(PetscInt *a, PetscInt *b, PetscInt *c, PetscInt *d)\n"
+                "{ if (a) *a = 3; if (b) *b = 99; if (c) *c = 0; if (d) *d = 1; return 0; }\n",
+                ("built against PETSc 3.", "runs with PETSc 3.99")),
+    "indices": ("PetscErrorCode PetscDataTypeGetSize(PetscDataType t, size_t *s)\n"
+                "{ *s = t == PETSC_INT ? 2 * sizeof(PetscInt) : t == PETSC_DOUBLE || t == PETSC_INT64 ? 8 : 4; return 0; }\n",
+                (f"built against a PETSc with {INDEX_BITS}-bit indices", f"runs with one with {2 * INDEX_BITS}-bit indices")),
+}
+
+
 @pytest.mark.parametrize("ranks", [1, 2])
-def test_library_refuses_another_petsc(prefix, tmp_path, ranks):
-    """A library built against PETSc 3.18 that runs with another (here a PetscGetVersionNumber
-    interposed before libpetsc's, as a PETSc whose library name does not carry its version, first
-    on the library path, would give) stops with one line, on any number of ranks, before it does
-    anything."""
-    shim = tmp_path / "petscversion.c"
-    shim.write_text("#include <petscsys.h>\n"
-                    "PetscErrorCode PetscGetVersionNumber(PetscInt *a, PetscInt *b, PetscInt *c, PetscInt *d)\n"
-                    "{ if (a) *a = 3; if (b) *b = 99; if (c) *c = 0; if (d) *d = 1; return 0; }\n")
+@pytest.mark.parametrize("other", sorted(OTHER_PETSC))
+def test_library_refuses_another_petsc(prefix, tmp_path, ranks, other):
+    """A library built against one PETSc that runs with another major.minor, or another index size,
+    stops with one line naming both, on any number of ranks, before it does anything."""
+    code, expected = OTHER_PETSC[other]
+    shim = tmp_path / "otherpetsc.c"
+    shim.write_text("#include <petscsys.h>\n" + code)
     cflags = run(["pkg-config", "--cflags", "PETSc" if INDEX_BITS == 32 else "PETSc64"]).stdout.split()
-    lib = tmp_path / "libpetscversion.so"
+    lib = tmp_path / "libotherpetsc.so"
     run(["mpicc", "-shared", "-fPIC", str(shim), "-o", str(lib), *cflags])
     r = subprocess.run(["mpirun", "--oversubscribe", "-x", "LD_PRELOAD", "-n", str(ranks), str(prefix / "bin" / "adhbem"),
                         *JOB, "-adh_output", "x.h5"], capture_output=True, text=True,
                        cwd=tmp_path, env=clean_env(LD_PRELOAD=str(lib)), timeout=120)
     assert r.returncode != 0
-    assert "built against PETSc 3." in r.stderr and "runs with PETSc 3.99" in r.stderr
+    assert all(e in r.stderr for e in expected), r.stderr
     # one line from the first rank (mpirun adds its own notice of the exit status), no abort
     assert len([v for v in r.stderr.splitlines() if "adhbem" in v]) == 1 and "MPI_ABORT" not in r.stderr, r.stderr
     assert not (tmp_path / "x.h5").exists()

@@ -151,21 +151,15 @@ static PetscErrorCode MaskVec(AdhSolver s, Vec *mask)
   PetscFunctionReturn(0);
 }
 
-/* The state after the recorded state at (leg, step) of the path, into s->checkpoint. */
-PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt step)
+/* The checkpoint's contents into the open viewer v. */
+static PetscErrorCode WriteOpen(AdhSolver s, PetscViewer v, PetscInt leg, PetscInt step)
 {
-  char        part[PETSC_MAX_PATH_LEN + 8];
-  PetscViewer v;
-  Vec         mask;
-  Shape       shape[ADH_MAX_SHAPES];
-  PetscInt    n, Nx, Ny, version = ADH_CHECKPOINT_VERSION, npath = s->npath, pulled = s->pulled_off;
-  PetscReal   Lx, Ly;
-  PetscMPIInt rank;
-  int         ok = 1;
+  Vec       mask;
+  Shape     shape[ADH_MAX_SHAPES];
+  PetscInt  n, Nx, Ny, version = ADH_CHECKPOINT_VERSION, npath = s->npath, pulled = s->pulled_off;
+  PetscReal Lx, Ly;
 
   PetscFunctionBegin;
-  PetscCall(PetscSNPrintf(part, sizeof(part), "%s.part", s->checkpoint));
-  PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, &v));
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", shape[k].option, shape[k].type, shape[k].value));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "version", PETSC_INT, &version));
@@ -200,8 +194,45 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(AdhOutputWriteCurve_Private(s, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  { /* a failure to write what HDF5 holds comes here, not in the close (after which HDF5 cannot recover) */
+    hid_t file_id;
+    PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
+    ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The state after the recorded state at (leg, step) of the path, into s->checkpoint: written to
+   FILE.part and renamed over FILE. On a full disk or a failed write FILE.part is removed and the
+   previous checkpoint stays as it was, whole. */
+PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt step)
+{
+  const size_t   n = (size_t)s->grid->Nx * (size_t)s->grid->Ny;
+  char           part[PETSC_MAX_PATH_LEN + 8], kept[PETSC_MAX_PATH_LEN + 64];
+  PetscViewer    v;
+  PetscErrorCode ierr = 0;
+  PetscMPIInt    rank;
+  int            ok = 1, err;
+
+  PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(PetscSNPrintf(part, sizeof(part), "%s.part", s->checkpoint));
+  if (s->checkpoint_state >= 0) PetscCall(PetscSNPrintf(kept, sizeof(kept), "the checkpoint %s of state %" PetscInt_FMT " is kept, whole", s->checkpoint, s->checkpoint_state));
+  else PetscCall(PetscSNPrintf(kept, sizeof(kept), "no checkpoint was written before"));
+  PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, &v));
+  /* the pressure, the contact set and a type's vector (force control's unit response) */
+  PetscCall(AdhOutputReserve_Private(s, part, 3 * 8 * n, &err));
+  if (!err) {
+    PetscCall(AdhOutputWriteBegin_Private());
+    ierr = WriteOpen(s, v, leg, step);
+    if (!ierr) ierr = PetscViewerDestroy(&v);
+    ierr = AdhOutputWriteEnd_Private(s, ierr, "-adh_checkpoint", part, kept);
+  }
+  PetscCall(AdhOutputAbandon_Private(&v)); /* after a failure: not a write more (its FILE.part is removed) */
+  if (err || ierr) PetscCall(AdhOutputRemove_Private(s, part));
+  PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_checkpoint: cannot write %s: %s; %s", part, strerror(err), kept);
+  PetscCall(ierr);
+  PetscCall(AdhOutputReleaseReserve_Private(s, part));
   if (!rank) ok = rename(part, s->checkpoint) == 0;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
   PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_checkpoint: could not move %s to %s", part, s->checkpoint);

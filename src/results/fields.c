@@ -12,6 +12,7 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   hsize_t        dims[3], chunk[3], offset[3], count[3];
   PetscInt       ys, ym;
   unsigned char *mask;
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
   PetscCall(AdhGridGetOwnership(g, &ys, &ym));
@@ -37,25 +38,20 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
     for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : PetscRealPart(pa[k]) != 0 ? 2 : 0;
     PetscCall(VecRestoreArrayRead(s->p, &pa));
   }
-  PetscCall(AdhH5WriteBlock_Private(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask));
+  ierr = AdhH5WriteBlock_Private(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask);
   PetscCall(PetscFree(mask));
+  PetscCall(AdhH5Agree_Private(s->comm, ierr));
   ADH_H5(H5Dclose(dset));
   ADH_H5(H5Gclose(group));
   PetscFunctionReturn(0);
 }
 
-/* The fields chosen by -adh_fields of the current state, curve row `state`, as the next frame of
-   /fields (HDF5 timestepping); the first frame also holds the profile h and the critical stress.
-   /fields/state, which maps frames to curve rows, grows with them. */
-PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt state)
+/* The fields of the current state as frame `frame`. */
+static PetscErrorCode WriteFrame(AdhSolver s, PetscViewer viewer, PetscInt frame, PetscInt state)
 {
-  const PetscInt frame = s->nfield_states;
-  Vec            u;
+  Vec u;
 
   PetscFunctionBegin;
-  if (!s->fields) PetscFunctionReturn(0);
-  PetscCall(PetscRealloc((frame + 1) * sizeof(PetscInt), &s->field_states));
-  s->field_states[s->nfield_states++] = state;
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/fields"));
   if (frame == 0) {
     const PetscBool made = (PetscBool)(!s->Sigma_field && !s->Sigma_view);
@@ -83,5 +79,47 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
     ADH_H5(H5Gclose(group));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* The bytes a frame takes: the fields chosen (the first frame also h and Sigma), 8 a point, and the contact's 1. */
+static size_t FrameBytes(AdhSolver s, PetscInt frame)
+{
+  const size_t n      = (size_t)s->grid->Nx * (size_t)s->grid->Ny;
+  size_t       fields = frame == 0 ? 2 : 0;
+
+  for (unsigned f = ADH_FIELD_PRESSURE; f <= ADH_FIELD_GAP; f <<= 1) fields += (s->fields & f) != 0;
+  return n * (8 * fields + ((s->fields & ADH_FIELD_CONTACT) != 0));
+}
+
+/* The fields chosen by -adh_fields of the current state, curve row `state`, as the next frame of
+   /fields (HDF5 timestepping); the first frame also holds the profile h and the critical stress.
+   /fields/state, which maps frames to curve rows, grows with them. A full disk or a failed write
+   stops it with one error (the file as after the last state, AdhOutputAppend_Private). */
+PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, PetscInt state)
+{
+  const PetscInt frame = s->nfield_states;
+  const char    *part;
+  char           kept[3 * PETSC_MAX_PATH_LEN];
+  PetscErrorCode ierr;
+  int            err;
+
+  PetscFunctionBegin;
+  if (!s->fields) PetscFunctionReturn(0);
+  PetscCall(PetscViewerFileGetName(viewer, &part));
+  PetscCall(AdhOutputKept_Private(s, part, kept, sizeof(kept)));
+  PetscCall(AdhOutputReserve_Private(s, part, FrameBytes(s, frame), &err));
+  if (err) { /* the file as after the last state: what the reservation got is given back */
+    s->output_failed = PETSC_TRUE;
+    PetscCall(AdhOutputReleaseReserve_Private(s, part));
+  }
+  PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write the fields of state %" PetscInt_FMT " to %s: %s; %s", state, part, strerror(err), kept);
+  PetscCall(PetscRealloc((frame + 1) * sizeof(PetscInt), &s->field_states));
+  s->field_states[s->nfield_states++] = state;
+  PetscCall(AdhOutputWriteBegin_Private());
+  ierr             = WriteFrame(s, viewer, frame, state);
+  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
+  s->output_failed = (PetscBool)(s->output_failed || ierr);
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }

@@ -24,6 +24,19 @@ PetscErrorCode AdhH5OpenExtendible_Private(hid_t group, const char name[], hid_t
   PetscFunctionReturn(0);
 }
 
+/* An error (ierr, raised on this rank or 0) of a write that not every rank makes, made every
+   rank's: the ranks leave together, none left waiting in HDF5's next collective call. Collective. */
+PetscErrorCode AdhH5Agree_Private(MPI_Comm comm, PetscErrorCode ierr)
+{
+  int failed = ierr != 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
+  PetscCall(ierr);
+  PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "the write failed on another rank");
+  PetscFunctionReturn(0);
+}
+
 /* count (a block of rank dimensions) values of buf into dataset dset at offset. */
 PetscErrorCode AdhH5WriteBlock_Private(hid_t dset, hid_t type, int rank, const hsize_t offset[], const hsize_t count[], const void *buf)
 {
@@ -89,25 +102,23 @@ PetscErrorCode AdhH5AppendRows_Private(AdhSolver s, hid_t group, const char name
   hid_t       dset, type = integer ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE;
   hsize_t     dims[1] = {(hsize_t)(from + count)}, chunk[1] = {256}, offset[1] = {(hsize_t)from}, n[1] = {(hsize_t)count};
   PetscMPIInt rank;
+  PetscErrorCode ierr = 0;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(AdhH5OpenExtendible_Private(group, name, type, 1, dims, chunk, &dset));
   if (!rank && count > 0) {
-    if (integer) {
-      long long *buf;
-      PetscCall(PetscMalloc1(count, &buf));
-      for (PetscInt k = 0; k < count; k++) buf[k] = (long long)values[k];
-      PetscCall(AdhH5WriteBlock_Private(dset, type, 1, offset, n, buf));
-      PetscCall(PetscFree(buf));
-    } else {
-      double *buf;
-      PetscCall(PetscMalloc1(count, &buf));
-      for (PetscInt k = 0; k < count; k++) buf[k] = (double)values[k];
-      PetscCall(AdhH5WriteBlock_Private(dset, type, 1, offset, n, buf));
-      PetscCall(PetscFree(buf));
+    void *buf;
+    PetscCall(PetscMalloc(count * sizeof(double), &buf));
+    for (PetscInt k = 0; k < count; k++) {
+      if (integer) ((long long *)buf)[k] = (long long)values[k];
+      else ((double *)buf)[k] = (double)values[k];
     }
+    ierr = AdhH5WriteBlock_Private(dset, type, 1, offset, n, buf);
+    PetscCall(PetscFree(buf));
   }
+  /* a write of rank 0's that fails is every rank's failure, before the next collective call */
+  PetscCall(AdhH5Agree_Private(s->comm, ierr));
   ADH_H5(H5Dclose(dset));
   PetscFunctionReturn(0);
 }

@@ -5,15 +5,31 @@
    FILE.h5.part and the file is flushed, and rank 0 appends the row to FILE.csv.part (the journal)
    and syncs it: whatever kills the job, both hold every state recorded before (adhbem.load reads
    them). A restart appends to the results of the run it goes on from. */
+#include <errno.h>
 #include "results/resultsimpl.h"
 
 PetscErrorCode AdhOutputWriteSurface_Private(AdhSolver, PetscViewer);
 PetscErrorCode AdhOutputWriteArrayTopography_Private(AdhSolver, PetscViewer);
 PetscErrorCode AdhOutputBegin_Private(AdhSolver, PetscViewer, const char[]);
 
+/* The first writes of a new results file: the rough surface or array topography, the parameters, the empty curve. */
+static PetscErrorCode Begin(AdhSolver s, PetscViewer viewer, const char file[])
+{
+  PetscFunctionBegin;
+  /* a rough surface, generated again, goes in now, while the contact set and its solver's vectors
+     are small (at the close they may be the largest of the run) */
+  if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhOutputWriteSurface_Private(s, viewer));
+  if (s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(AdhOutputWriteArrayTopography_Private(s, viewer));
+  PetscCall(AdhOutputBegin_Private(s, viewer, file));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer *viewer)
 {
-  char part[PETSC_MAX_PATH_LEN + 8];
+  char           part[PETSC_MAX_PATH_LEN + 8];
+  const PetscInt n = s->grid->Nx * s->grid->Ny;
+  PetscErrorCode ierr;
+  int            err;
 
   PetscFunctionBegin;
   PetscCall(AdhOutputCheckWritable_Private(s, "-adh_output", file));
@@ -21,11 +37,18 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   PetscCall(PetscViewerHDF5Open(s->comm, part, FILE_MODE_WRITE, viewer));
   PetscCall(PetscFree(s->field_states));
   s->nfield_states = 0;
-  /* a rough surface, generated again, goes in now, while the contact set and its solver's vectors
-     are small (at the close they may be the largest of the run) */
-  if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhOutputWriteSurface_Private(s, *viewer));
-  if (s->indenter.type == ADH_INDENTER_ARRAY) PetscCall(AdhOutputWriteArrayTopography_Private(s, *viewer));
-  PetscCall(AdhOutputBegin_Private(s, *viewer, file));
+  s->rows_written  = 0;
+  PetscCall(AdhOutputReserve_Private(s, part, s->indenter.type == ADH_INDENTER_ROUGH || s->indenter.type == ADH_INDENTER_ARRAY ? (size_t)n * sizeof(double) : 0, &err));
+  if (err) { /* nothing in it yet: not left behind */
+    PetscCall(AdhOutputAbandon_Private(viewer));
+    PetscCall(AdhOutputRemove_Private(s, part));
+  }
+  PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s", part, strerror(err));
+  PetscCall(AdhOutputWriteBegin_Private());
+  ierr             = Begin(s, *viewer, file);
+  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, "no state was written");
+  s->output_failed = (PetscBool)(s->output_failed || ierr);
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 
@@ -77,9 +100,8 @@ PetscErrorCode AdhOutputBegin_Private(AdhSolver s, PetscViewer v, const char fil
   PetscFunctionReturn(0);
 }
 
-/* The states recorded since the last call into the results file and the journal, flushed: after
-   it, both hold every recorded state whatever happens to the job. */
-PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
+/* The curve's rows recorded since the last call, and the pull-off attributes, into the file, flushed. */
+static PetscErrorCode AppendRows(AdhSolver s, PetscViewer v)
 {
   const PetscInt from = s->rows_written, n = s->curve.n;
   hid_t          file_id, group;
@@ -103,8 +125,35 @@ PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
   if (k != s->pull_off_written) PetscCall(AdhOutputWritePullOff_Private(s, v, k));
   PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
   ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
-  PetscCall(AdhJournalWrite_Private(s, from, n));
-  s->rows_written = n;
+  PetscFunctionReturn(0);
+}
+
+/* The states recorded since the last call into the results file and the journal, flushed: after
+   it, both hold every recorded state whatever happens to the job. A full disk or a failed write
+   stops it with one error, the file as it was after the last call. */
+PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
+{
+  const char    *part;
+  char           kept[3 * PETSC_MAX_PATH_LEN];
+  PetscErrorCode ierr;
+  int            err;
+
+  PetscFunctionBegin;
+  PetscCall(PetscViewerFileGetName(v, &part));
+  PetscCall(AdhOutputKept_Private(s, part, kept, sizeof(kept)));
+  PetscCall(AdhOutputReserve_Private(s, part, 0, &err));
+  if (err) { /* the file as after the last state: what the reservation got is given back */
+    s->output_failed = PETSC_TRUE;
+    PetscCall(AdhOutputReleaseReserve_Private(s, part));
+  }
+  PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s; %s", part, strerror(err), kept);
+  PetscCall(AdhOutputWriteBegin_Private());
+  ierr             = AppendRows(s, v);
+  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
+  s->output_failed = (PetscBool)(s->output_failed || ierr);
+  PetscCall(ierr);
+  PetscCall(AdhJournalWrite_Private(s, s->rows_written, s->curve.n));
+  s->rows_written = s->curve.n;
   PetscFunctionReturn(0);
 }
 
@@ -112,16 +161,21 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
 {
   char        part[PETSC_MAX_PATH_LEN + 8], xmf[PETSC_MAX_PATH_LEN + 8];
   PetscMPIInt rank;
-  int         ok = 1;
+  int         ok = 0; /* rank 0's errno of the rename */
 
   PetscFunctionBegin;
   PetscCall(AdhOutputAppend_Private(s, *viewer));
   PetscCall(PetscViewerDestroy(viewer));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(AdhOutputPartName_Private(file, part, sizeof(part)));
-  if (!rank) ok = rename(part, file) == 0;
+  PetscCall(AdhOutputReleaseReserve_Private(s, part));
+  if (!rank) ok = rename(part, file) == 0 ? 0 : errno;
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
-  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s", part, file);
+  if (ok) {
+    char kept[3 * PETSC_MAX_PATH_LEN];
+    PetscCall(AdhOutputKept_Private(s, part, kept, sizeof(kept)));
+    SETERRQ(s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not move %s to %s: %s; %s", part, file, strerror(ok), kept);
+  }
   PetscCall(AdhJournalClose_Private(s, file));
   if (s->nfield_states) {
     /* the XDMF names the HDF5 file without its directory: the pair can move together */
@@ -153,13 +207,16 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
 @*/
 PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 {
-  PetscViewer viewer;
+  PetscViewer    viewer = NULL;
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhOutputOpen_Private(s, file, &viewer));
-  PetscCall(AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0)));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE}));
-  PetscCall(AdhOutputClose_Private(s, file, &viewer));
+  ierr = AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0));
+  if (!ierr) ierr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE});
+  if (!ierr) ierr = AdhOutputClose_Private(s, file, &viewer);
+  PetscCall(AdhOutputAbandon_Private(&viewer)); /* after a failed write: FILE.part as it is */
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }

@@ -116,6 +116,7 @@ typedef struct {
   PetscErrorCode (*write_fields)(AdhSolver, PetscViewer, PetscInt state);
   PetscErrorCode (*append)(AdhSolver, PetscViewer); /* the states recorded since the last call */
   PetscErrorCode (*close)(AdhSolver, const char file[], PetscViewer *);
+  PetscErrorCode (*abandon)(PetscViewer *); /* a file whose write failed, closed as it is */
   PetscErrorCode (*checkpoint_write)(AdhSolver, PetscInt leg, PetscInt step);
   PetscErrorCode (*checkpoint_read)(AdhSolver, PetscInt *leg, PetscInt *step);
 } AdhResultsOps;
@@ -282,6 +283,7 @@ struct _p_AdhSolver {
   /* the results file as it is written: rows of the curve already in it (and in the journal,
      FILE.csv.part, appended by rank 0), and the pull-off state its attributes describe */
   PetscInt   rows_written, pull_off_written;
+  PetscBool  output_failed; /* a write into the results file failed: it is closed as it is, not written further */
   FILE      *journal;
 
   /* stopping a path on a signal (interface/path.c): the checks are on while the path runs with its

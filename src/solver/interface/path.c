@@ -463,13 +463,24 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   intr           = signal(SIGINT, OnSignal);
   s->stoppable   = PETSC_TRUE;
   s->on_path     = PETSC_TRUE;
-  ierr           = SolvePathOpen(s, &viewer, leg0, step0);
-  s->on_path     = PETSC_FALSE;
-  s->stoppable   = PETSC_FALSE;
-  /* What was computed before an error or a stop is still written, marked incomplete. */
+  s->output_failed = PETSC_FALSE;
+  ierr             = SolvePathOpen(s, &viewer, leg0, step0);
+  s->on_path       = PETSC_FALSE;
+  s->stoppable     = PETSC_FALSE;
+  /* What was computed before an error or a stop is still written, marked incomplete; after a
+     failed write the file is closed as it is (FILE.part, whole to the last state written). The
+     first error is the one told: a failure of the close after it is not. */
   if (viewer) {
-    cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
-    if (!cerr) cerr = AdhResults.close(s, s->output, &viewer);
+    if (ierr) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    if (!s->output_failed) {
+      cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
+      if (!cerr) cerr = AdhResults.close(s, s->output, &viewer);
+    }
+    PetscCall(AdhResults.abandon(&viewer)); /* not closed (a write failed): HDF5 lets go of FILE.part as it is */
+    if (ierr) {
+      PetscCall(PetscPopErrorHandler());
+      cerr = 0;
+    }
   }
   if (ierr == PETSC_ERR_SIG && s->stop_signal) {
     char msg[3 * PETSC_MAX_PATH_LEN];

@@ -27,7 +27,14 @@ PetscErrorCode AdhSolverInitializePackage(void)
   AdhSolverPackageInitialized = PETSC_TRUE;
   PetscCall(AdhInitializePackage());
   PetscCall(AdhSolverRegisterAll_Private());
-  AdhResults = (AdhResultsOps){.check_writable = AdhOutputCheckWritable_Private, .open = AdhOutputOpen_Private, .resume = AdhOutputResume_Private, .write_fields = AdhOutputWriteFields_Private, .append = AdhOutputAppend_Private, .close = AdhOutputClose_Private, .checkpoint_write = AdhCheckpointWrite_Private, .checkpoint_read = AdhCheckpointRead_Private};
+  {
+    /* a failed write is told in one line that names the file (results/diskspace.c): HDF5's own
+       print of its error stack stays behind -adh_traceback, as PETSc's traceback does */
+    PetscBool traceback = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
+    if (!traceback) ADH_H5(H5Eset_auto2(H5E_DEFAULT, NULL, NULL));
+  }
+  AdhResults = (AdhResultsOps){.check_writable = AdhOutputCheckWritable_Private, .open = AdhOutputOpen_Private, .resume = AdhOutputResume_Private, .write_fields = AdhOutputWriteFields_Private, .append = AdhOutputAppend_Private, .close = AdhOutputClose_Private, .abandon = AdhOutputAbandon_Private, .checkpoint_write = AdhCheckpointWrite_Private, .checkpoint_read = AdhCheckpointRead_Private};
   PetscCall(PetscRegisterFinalize(AdhSolverFinalizePackage));
   PetscFunctionReturn(0);
 }

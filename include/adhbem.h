@@ -307,6 +307,9 @@ typedef struct {
   PetscBool resolved;                /* the grid resolves the adhesion (meaningful when state >= 0) */
   PetscReal cohesive_elements;       /* a finite-range criterion: the elements its cohesive zone covers there (0: none) */
   PetscReal cohesive_width;          /* and, for a sphere, how many grid spacings wide it is: the annulus around the contact's disk (0: none) */
+  PetscInt  apart;                   /* the first state where the surfaces came apart (pulled_off): only then is the largest tension the pull-off force (-1: they did not) */
+  PetscInt  full_contact;            /* the first state in full contact, every point of the grid in the contact set (-1: none) */
+  PetscInt  last_points;             /* the points in contact at the last state (the path ended with them when not apart) */
 } AdhResolution;
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
 /* The lines on how well the grid resolves the adhesion (nothing without tension; a run that never

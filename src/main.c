@@ -124,11 +124,32 @@ static PetscErrorCode CheckUnprefixedOptions(void)
   PetscFunctionReturn(0);
 }
 
+/* What the run says of its largest tension: a pull-off force only when the surfaces came apart,
+   else why it is not one (full contact, the path ended in contact). */
+/* What the summary says of the largest tension: a pull-off force only when the surfaces came apart,
+   else why it is not one (full contact to the end, or the path ended in contact). */
+static PetscErrorCode PullOffWords(const AdhCurve *curve, PetscInt npoints, const AdhResolution *r, char words[], size_t len)
+{
+  const AdhState *st = r->state >= 0 ? &curve->state[r->state] : NULL;
+
+  PetscFunctionBeginUser;
+  words[0] = 0;
+  if (r->apart >= 0 && st) PetscCall(PetscSNPrintf(words, len, "pull-off force (the largest tension) %g at d = %g; contact lost at d = %g", (double)-st->force, (double)st->d, (double)curve->state[r->apart].d));
+  else if (r->apart >= 0) PetscCall(PetscSNPrintf(words, len, "no tension carried; contact lost at d = %g", (double)curve->state[r->apart].d));
+  else {
+    char why[128], tension[128] = "no tension carried";
+    if (r->full_contact >= 0 && r->last_points == npoints) PetscCall(PetscSNPrintf(why, sizeof(why), "in full contact from state %" PetscInt_FMT " to the end of the path", r->full_contact));
+    else PetscCall(PetscSNPrintf(why, sizeof(why), "the path ended with %" PetscInt_FMT " points in contact%s", r->last_points, r->full_contact >= 0 ? ", after full contact" : ""));
+    if (st) PetscCall(PetscSNPrintf(tension, sizeof(tension), "the largest tension %g at d = %g is not a pull-off force", (double)-st->force, (double)st->d));
+    PetscCall(PetscSNPrintf(words, len, "the surfaces did not come apart (%s): %s", why, tension));
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Run(AdhSolver solver)
 {
   const AdhCurve *curve;
   PetscBool       has_help;
-  PetscReal       Fmin = 0, dmin = 0;
 
   PetscFunctionBeginUser;
   PetscCall(AdhSolverSetFromOptions(solver));
@@ -148,36 +169,27 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscCall(AdhSolverGetCurve(solver, &curve));
   {
     /* The words, one meaning each: the pull-off force is the largest tension the contact carried
-       (-min F; the results file's pull_off_force); the contact is lost where a leg ends by
-       pull-off (nothing in contact after it). */
-    PetscInt  ksp = 0, mults = 0, outer = 0, ffts = 0, touched = 0;
-    PetscReal dlost = 0;
-    PetscBool lost = PETSC_FALSE;
-    char      words[256];
+       (-min F; the results file's pull_off_force), and only when the surfaces came apart (a leg
+       ended by pull-off: nothing in contact after it, or force control's bisected pull-off). */
+    PetscInt      ksp = 0, mults = 0, outer = 0, ffts = 0, touched = 0, Nx, Ny;
+    AdhResolution r;
+    char          words[512];
     for (PetscInt k = 0; k < curve->n; k++) {
       const AdhState *st = &curve->state[k];
-      if (st->force < Fmin) {
-        Fmin = st->force;
-        dmin = st->d;
-      }
-      if (st->pulled_off && !lost) {
-        lost  = PETSC_TRUE;
-        dlost = st->d;
-      }
       touched += st->contact_points > 0;
       ksp += st->ksp_iterations;
       mults += st->compliance_applications;
       outer += st->outer_iterations;
       ffts += st->fft_pairs;
     }
-    if (!touched) PetscCall(PetscSNPrintf(words, sizeof(words), "the surfaces never touched"));
-    else if (Fmin < 0) PetscCall(PetscSNPrintf(words, sizeof(words), "pull-off force (the largest tension) %g at d = %g", (double)-Fmin, (double)dmin));
-    else PetscCall(PetscSNPrintf(words, sizeof(words), "no tension carried"));
-    if (lost) {
-      size_t len;
-      PetscCall(PetscStrlen(words, &len));
-      PetscCall(PetscSNPrintf(words + len, sizeof(words) - len, "; contact lost at d = %g", (double)dlost));
+    PetscCall(AdhSolverGetResolution(solver, &r));
+    {
+      AdhGrid grid;
+      PetscCall(AdhSolverGetGrid(solver, &grid));
+      PetscCall(AdhGridGetSizes(grid, &Nx, &Ny, NULL, NULL));
     }
+    if (!touched) PetscCall(PetscSNPrintf(words, sizeof(words), "the surfaces never touched"));
+    else PetscCall(PullOffWords(curve, Nx * Ny, &r, words, sizeof(words)));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; %s; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, words, outer, ksp, mults, ffts));
   }
   PetscCall(AdhSolverResolutionView(solver, NULL));

@@ -50,7 +50,7 @@ path = [0.0, d1, -0.3 * a_c ** 2 / R, -0.8 * a_c ** 2 / R]
 s = adhbem.Solver(n=N, size=size, radius=R, E_star=E_star, gamma=dgamma, start="adhesive",
                   path=path, steps=12 if QUICK else 30)
 curve = s.solve_path(progress=False)
-print(f"largest tension {s.pull_off_force:.4g} = {s.pull_off_force / F_adh:.3f} F_adh")
+print(f"largest tension {s.largest_tension:.4g} = {s.largest_tension / F_adh:.3f} F_adh")
 print(f"resolution: JKR contact radius {s.resolution['asperity_contact_radius']:.1f} spacings, "
       f"resolved: {s.resolution['resolved']}")
 

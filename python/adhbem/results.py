@@ -152,9 +152,21 @@ class Results:
         return self._file["fields"][name][frames[0]]
 
     @property
+    def came_apart(self) -> bool:
+        """Whether the surfaces came apart: a state ended in pull-off (``pulled_off`` in the curve)."""
+        return bool(np.any(self.curve.get("pulled_off", np.zeros(0))))
+
+    @property
+    def largest_tension(self) -> float:
+        """The largest tension the contact carried, -min(force) (0.0: none), apart or not."""
+        return max(0.0, -float(self.curve["force"].min())) if len(self.curve["force"]) else 0.0
+
+    @property
     def pull_off_force(self) -> float:
-        """The pull-off force: the largest tension the contact carried, -min(force) (0.0: none)."""
-        return self.params.get("pull_off_force", max(0.0, -float(self.curve["force"].min())))
+        """The pull-off force: the largest tension the contact carried, when the surfaces came apart;
+        NaN when they did not (full contact to the end, or a path that ended in contact), whose
+        largest tension is ``largest_tension``."""
+        return self.largest_tension if self.came_apart else float("nan")
 
     @property
     def profile(self) -> np.ndarray:

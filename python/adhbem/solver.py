@@ -351,11 +351,18 @@ class Solver:
         _adhbem.solver_monitor(self._s, fn)
 
     @property
-    def pull_off_force(self) -> float:
-        """The pull-off force: the largest tension the contact carried over the curve, -min(force)
-        (0.0 without tension), the ``pull_off_force`` of the results file."""
+    def largest_tension(self) -> float:
+        """The largest tension the contact carried over the curve, -min(force) (0.0 without
+        tension), whether or not the surfaces came apart."""
         F = self.curve()["force"]
         return max(0.0, -float(F.min())) if len(F) else 0.0
+
+    @property
+    def pull_off_force(self) -> float:
+        """The pull-off force: the largest tension, when the surfaces came apart (a state ended in
+        pull-off); NaN when they did not (full contact to the end, or a path that ended in
+        contact: ``resolution["apart"]`` is -1), as the results file's ``pull_off_force``."""
+        return self.largest_tension if self.resolution["apart"] >= 0 else float("nan")
 
     @property
     def resolution(self) -> dict:
@@ -371,7 +378,11 @@ class Solver:
         - ``cohesive_elements``, ``cohesive_width``: with ``criterion="dugdale"``, the elements its
           cohesive zone covers there, and for a sphere how many grid spacings wide the zone is
           (under 10 the pull-off force depends on the grid; 0.0: no zone);
-        - ``resolved``: the verdict (``None`` before a state carried tension).
+        - ``resolved``: the verdict (``None`` before a state carried tension);
+        - ``apart``: the first curve row where the surfaces came apart (-1: they did not, and the
+          largest tension is no pull-off force); ``full_contact``: the first row in full contact,
+          every grid point in the set (-1: none); ``last_points``: the points in contact at the
+          last row.
 
         The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``, ...
         """

@@ -1,6 +1,7 @@
 /* The parameters of a run as the results file's root attributes: the grid, material, indenter
    (with the rough surface or array topography it ran on), criterion and solver, and the pull-off
    force with how well the grid resolves it. */
+#include <math.h>
 #include "results/resultsimpl.h"
 
 /* A rough indenter's parameters and realised statistics as root attributes, and its heights z
@@ -51,10 +52,18 @@ PetscErrorCode AdhOutputWriteArrayTopography_Private(AdhSolver s, PetscViewer v)
 PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscInt k)
 {
   const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved", "pull_off_cohesive_width"};
-  PetscReal         pull_off     = k >= 0 ? -s->curve.state[k].force : 0.0;
+  const PetscReal   largest      = k >= 0 ? -s->curve.state[k].force : 0.0;
+  AdhResolution     r;
+  PetscReal         pull_off;
 
   PetscFunctionBegin;
+  /* a pull-off force only where the surfaces came apart; else NaN, and the largest tension as such */
+  PetscCall(AdhSolverGetResolution(s, &r));
+  pull_off = r.apart >= 0 ? largest : (PetscReal)NAN;
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pull_off_force", PETSC_REAL, &pull_off));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "largest_tension", PETSC_REAL, &largest));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "came_apart", PETSC_BOOL, &(PetscBool){r.apart >= 0}));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "full_contact", PETSC_BOOL, &(PetscBool){r.full_contact >= 0}));
   if (k >= 0) {
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[0], PETSC_REAL, &s->curve.state[k].small_patch_tension));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[1], PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
@@ -67,6 +76,8 @@ PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscIn
       if (H5Aexists_by_name(file_id, "/", resolution[j], H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", resolution[j], H5P_DEFAULT));
   }
   s->pull_off_written = k;
+  s->apart_written    = r.apart;
+  s->full_written     = r.full_contact;
   PetscFunctionReturn(0);
 }
 

@@ -121,8 +121,11 @@ static PetscErrorCode AppendRows(AdhSolver s, PetscViewer v)
     PetscCall(PetscViewerHDF5PopGroup(v));
     PetscCall(PetscFree(column));
   }
-  PetscCall(AdhCurveGetPullOffState(&s->curve, &k));
-  if (k != s->pull_off_written) PetscCall(AdhOutputWritePullOff_Private(s, v, k));
+  {
+    AdhResolution r;
+    PetscCall(AdhSolverGetResolution(s, &r));
+    if (r.state != s->pull_off_written || r.apart != s->apart_written || r.full_contact != s->full_written) PetscCall(AdhOutputWritePullOff_Private(s, v, r.state));
+  }
   PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
   ADH_H5(H5Fflush(file_id, H5F_SCOPE_GLOBAL));
   PetscFunctionReturn(0);

@@ -282,7 +282,7 @@ struct _p_AdhSolver {
 
   /* the results file as it is written: rows of the curve already in it (and in the journal,
      FILE.csv.part, appended by rank 0), and the pull-off state its attributes describe */
-  PetscInt   rows_written, pull_off_written;
+  PetscInt   rows_written, pull_off_written, apart_written, full_written; /* the states the pull-off attributes describe */
   PetscBool  output_failed; /* a write into the results file failed: it is closed as it is, not written further */
   FILE      *journal;
 

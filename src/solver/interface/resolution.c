@@ -137,6 +137,10 @@ PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
   pull-off force converges at first order, about 0.4/width relative). r->cohesive_elements gives the elements the zone
   covers at that state for any profile. Computed from the curve, so the same on every rank.
 
+  r->apart is the first state where the surfaces came apart (a leg ended in pull-off); only then is the largest tension
+  the pull-off force. Without it (-1) the path ended in contact, r->last_points of them, or in full contact,
+  r->full_contact the first state with every grid point in the contact set.
+
 .seealso: `AdhSolverResolutionView()`, `AdhCurveGetPullOffState()`, `AdhSolverGetCurve()`, `AdhSolverComputeState()`
 @*/
 PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
@@ -157,8 +161,16 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
     r->cohesive_elements      = st->cohesive_area / (s->grid->hx * s->grid->hy); /* a finite-range criterion's zone */
     r->cohesive_width         = AdhSolverCohesiveWidth_Private(s, st);
   }
+  r->apart        = -1;
+  r->full_contact = -1;
+  for (PetscInt k = 0; k < s->curve.n; k++) {
+    if (s->curve.state[k].pulled_off && r->apart < 0) r->apart = k;
+    if (s->curve.state[k].contact_points == s->grid->Nx * s->grid->Ny && r->full_contact < 0) r->full_contact = k;
+  }
+  r->last_points = s->curve.n ? s->curve.state[s->curve.n - 1].contact_points : 0;
   PetscFunctionReturn(0);
 }
+
 
 /*@
   AdhSolverResolutionView - Prints how well the grid resolves the adhesion
@@ -200,6 +212,12 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
   if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is an annulus about %.3g grid spacings wide (%.0f elements)%s\n", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid, about 0.4/width relative)" : ""));
   else if (r.cohesive_elements > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone covers %.0f elements\n", (double)r.cohesive_elements));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, r.resolved ? "the grid resolves the adhesion" : "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes"));
+  if (s->curve.state[r.state].contact_points == s->grid->Nx * s->grid->Ny) {
+    /* the whole cell sticks: no edge, nothing for the grid to resolve */
+    PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) the whole grid is in contact: no contact edge, no pull-off to resolve\n", r.state, (double)r.force));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest,
+                                   r.resolved ? (r.apart >= 0 ? "the grid resolves the adhesion" : "the grid resolves the tension carried") : (r.apart >= 0 ? "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes" : "the largest tension depends on the grid; refine it (the same surface on a finer grid) until it no longer changes")));
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 and plotting results need neither petsc4py nor the C extension)."""
 from __future__ import annotations
 
+import math
 import os
 from typing import Callable, Iterator, Optional, Union
 
@@ -126,9 +127,48 @@ class Solver:
             hint = f" (did you mean {near[0]!r}?)" if near else ""
             raise TypeError(f"Solver: unknown option {key!r}{hint}")
 
+    @staticmethod
+    def _check_option_values(options):
+        # A value of the wrong kind is refused here, naming the keyword, rather than cast or
+        # replaced by a default (or reported by PETSc without the keyword's name).
+        import numbers
+        from .options import solver_options, _is_sequence
+        kinds = {o.name: o.kind for o in solver_options()}
+
+        def number(key, v, integer):
+            if isinstance(v, (complex, np.complexfloating)):
+                raise TypeError(f"{key}: expected a real number, got the complex {v!r}")
+            if isinstance(v, np.ndarray) and v.ndim == 0:
+                v = v.item()
+            if isinstance(v, str):
+                try:
+                    v = int(v) if integer else float(v)
+                except ValueError:
+                    raise ValueError(f"{key}: expected {'an integer' if integer else 'a real number'}, got {v!r}") from None
+            elif not isinstance(v, numbers.Real) or isinstance(v, (bool, np.bool_)):
+                raise TypeError(f"{key}: expected {'an integer' if integer else 'a real number'}, got {type(v).__name__} {v!r}")
+            if integer and not float(v).is_integer():
+                raise ValueError(f"{key}: expected an integer, got {v!r}")
+            if math.isnan(float(v)):
+                raise ValueError(f"{key}: NaN is not a value")
+
+        for key, value in options.items():
+            kind = kinds.get(key)
+            if kind in ("int", "real"):
+                if _is_sequence(value):
+                    raise TypeError(f"{key}: expected one number, got a sequence {value!r}")
+                number(key, value, kind == "int")
+            elif kind in ("int list", "real list"):
+                values = list(np.asarray(value, dtype=object).ravel()) if _is_sequence(value) else [value]
+                if not values:
+                    raise ValueError(f"{key}: an empty sequence (give at least one value)")
+                for v in values:
+                    number(key, v, kind == "int list")
+
     def _init(self, comm, options):
         global _solver_count
         self._check_option_names(options)
+        self._check_option_values(options)
         _solver_count += 1
         self.prefix = f"adhbem{_solver_count}_"
         comm = PETSc.COMM_WORLD if comm is None else comm
@@ -489,7 +529,15 @@ class Solver:
     def _field_from_array(self, name, array, nonnegative=False):
         Nx, Ny = grid_shape(self.compliance)
         try:
-            a = np.asarray(array, dtype=np.float64)
+            raw = np.asarray(array)
+        except (TypeError, ValueError) as e:  # ragged nested lists
+            raise ValueError(f"{name}: expected a NumPy array of shape (Ny, Nx) = {(Ny, Nx)} or a PETSc.Vec ({e})") from None
+        if raw.dtype.kind not in "iuf":  # complex, bool, object (ragged), strings: never cast silently
+            what = {"c": "complex values (give the real part, np.real, if that is what is meant)", "b": "booleans",
+                    "O": "Python objects (a ragged or mixed sequence?)"}.get(raw.dtype.kind, f"dtype {raw.dtype}")
+            raise TypeError(f"{name}: expected real numbers, got {what}")
+        try:
+            a = np.asarray(raw, dtype=np.float64)
         except (TypeError, ValueError) as e:
             raise ValueError(f"{name}: expected a NumPy array of shape (Ny, Nx) = {(Ny, Nx)} or a PETSc.Vec ({e})") from None
         if a.shape != (Ny, Nx):

@@ -4,6 +4,7 @@ no C traceback; -adh_traceback asks for PETSc's traceback as it does for the exe
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import adhbem
@@ -74,3 +75,38 @@ def test_no_c_traceback_unless_asked():
     r = run_child("-adh_traceback")
     assert r.returncode == 1
     assert "[0]" in r.stderr and "AdhSolverSetFromOptions() at" in r.stderr, r.stderr
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("kwargs, kind, words", [
+    (dict(gamma="sticky"), ValueError, "gamma: expected a real number, got 'sticky'"),
+    (dict(gamma=float("nan")), ValueError, "gamma: NaN is not a value"),
+    (dict(gamma=2e-3 + 1j), TypeError, "gamma: expected a real number, got the complex"),
+    (dict(radius=[1.0, 2.0]), TypeError, "radius: expected one number, got a sequence"),
+    (dict(steps=2.5), ValueError, "steps: expected an integer, got 2.5"),
+    (dict(steps=True), TypeError, "steps: expected an integer, got bool"),
+    (dict(path=[]), ValueError, "path: an empty sequence"),
+    (dict(path=[0.01, "deep"]), ValueError, "path: expected a real number, got 'deep'"),
+    (dict(path=[0.01, float("nan")]), ValueError, "path: NaN is not a value"),
+])
+def test_bad_keyword_values_name_the_keyword(kwargs, kind, words):
+    """Nothing is cast silently or replaced by a default: path=[] ran the default path."""
+    with pytest.raises(kind) as e:
+        adhbem.Solver(**{**SMALL, **kwargs})
+    assert words in str(e.value), str(e.value)
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("field", ["topography", "gamma_field"])
+@pytest.mark.parametrize("value, kind, words", [
+    (np.ones((16, 16)) * (1 + 1j), TypeError, "expected real numbers, got complex values"),
+    (np.ones((16, 16), dtype=bool), TypeError, "expected real numbers, got booleans"),
+    (np.array([[1.0, 2.0], [3.0]], dtype=object), TypeError, "expected real numbers, got Python objects"),
+    ([[1.0, 2.0], [3.0]], ValueError, "expected a NumPy array of shape (Ny, Nx) = (16, 16)"),
+    (np.full((16, 16), "1"), TypeError, "expected real numbers, got dtype <U1"),
+])
+def test_bad_arrays_name_the_argument(field, value, kind, words):
+    """A complex topography was cast to its real part with only NumPy's ComplexWarning."""
+    with pytest.raises(kind) as e:
+        adhbem.Solver(**{**SMALL, field: value})
+    assert str(e.value).startswith(f"{field}: ") and words in str(e.value), str(e.value)

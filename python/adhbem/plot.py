@@ -344,7 +344,7 @@ def curve(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (),
                 else:
                     value = f"{-y[k]:.3g}"
                 # a pull-off force only where the surfaces came apart
-                what = "pull-off force" if run.came_apart else "largest tension (did not come apart)"
+                what = "pull-off force" if run.results.came_apart else "largest tension (did not come apart)"
                 ax.plot(x[k], y[k], "*", ms=7, color="red" if i == 0 else color, mec="red", zorder=5,
                         label=f"{what} {value}")
             lost = list(np.nonzero(c.get("pulled_off", np.zeros(0)))[0])
@@ -573,7 +573,7 @@ def resolution(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] 
             ac = prm.get("asperity_contact_radius")
             verdict = "resolved" if prm.get("adhesion_resolved") else "not resolved"
             ax.plot(k, c["small_patch_tension"][k], "*", ms=7, color="red" if i == 0 else color, mec="red",
-                    label=f"{'pull-off force' if run.came_apart else 'largest tension'}: {verdict}"
+                    label=f"{'pull-off force' if run.results.came_apart else 'largest tension'}: {verdict}"
                     + (f" ($a_c/h$ {ac:.3g})" if ac else ""))
         ax.axhline(0.1, color="0.5", ls="--", lw=0.6, label="resolved below")
         ax.set_ylim(-0.03, 1.03)

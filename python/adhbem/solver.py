@@ -159,7 +159,10 @@ class Solver:
                     raise TypeError(f"{key}: expected one number, got a sequence {value!r}")
                 number(key, value, kind == "int")
             elif kind in ("int list", "real list"):
-                values = list(np.asarray(value, dtype=object).ravel()) if _is_sequence(value) else [value]
+                if isinstance(value, str):  # the option's own text, "0,0.02,-0.03"
+                    values = [v for v in value.split(",") if v.strip()]
+                else:
+                    values = list(np.asarray(value, dtype=object).ravel()) if _is_sequence(value) else [value]
                 if not values:
                     raise ValueError(f"{key}: an empty sequence (give at least one value)")
                 for v in values:

@@ -53,10 +53,16 @@ def test_monitor_has_a_header_with_units_and_the_time_left():
 
 
 def test_summary_words(tmp_path):
-    """One meaning a word: the pull-off force is the largest tension; 'contact lost' where a leg
-    ends; a path that never touches says so, with no pull-off or resolution line."""
+    """One meaning a word: the pull-off force is the largest tension of a path that came apart;
+    'contact lost' where a leg ends; a path that never touches says so, with no pull-off or resolution line."""
     r = subprocess.run(RUN, capture_output=True, text=True, timeout=120)
-    assert re.search(r"^adhbem: 13 states; pull-off force \(the largest tension\) \S+ at d = \S+; \d+ set updates", r.stdout, re.M), r.stdout
+    # this path ends with the sphere still stuck: its largest tension is no pull-off force
+    assert re.search(r"^adhbem: 13 states; the surfaces did not come apart \(the path ended with \d+ points in contact\): "
+                     r"the largest tension \S+ at d = \S+ is not a pull-off force; \d+ set updates", r.stdout, re.M), r.stdout
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "2e-3", "-adh_path", "0.02,-0.06", "-adh_steps", "12"],
+                       capture_output=True, text=True, timeout=120)
+    assert re.search(r"^adhbem: \d+ states; pull-off force \(the largest tension\) \S+ at d = \S+; contact lost at d = \S+; "
+                     r"\d+ set updates", r.stdout, re.M), r.stdout
     r = subprocess.run([EXE, "-adh_n", "32", "-adh_gamma", "2e-3", "-adh_path", "-0.2,-0.1", "-adh_steps", "2"],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0

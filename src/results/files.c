@@ -25,7 +25,21 @@ PetscErrorCode AdhOutputSiblingName_Private(const char file[], const char ext[],
   PetscFunctionReturn(0);
 }
 
-/* Rank 0 makes the file's directory when it is missing (results/ in a fresh clone) and tries to
+/* The folder dir and every missing folder above it, as `mkdir -p` makes them (the umask sets their
+   permissions); a failure shows when the file is created in it. */
+static void MakeFolders(char dir[])
+{
+  for (char *c = dir + 1;; c++) {
+    if (*c && *c != '/') continue;
+    const char keep = *c;
+    *c              = 0;
+    (void)mkdir(dir, 0777);
+    *c = keep;
+    if (!keep) break;
+  }
+}
+
+/* Rank 0 makes the file's folders when they are missing, all levels (results/ in a fresh clone) and tries to
    create FILE.part (or checks that an existing one is writable); everyone learns the answer, so a
    bad path fails before any work with a message that names the option and the file. */
 PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], const char file[])
@@ -54,7 +68,7 @@ PetscErrorCode AdhOutputCheckWritable_Private(AdhSolver s, const char option[], 
       if (slash && slash != dir) {
         *slash = 0;
         PetscCall(PetscTestDirectory(dir, 'w', &exists));
-        if (!exists) (void)PetscMkdir(dir); /* a failure shows in the fopen below */
+        if (!exists) MakeFolders(dir); /* a failure shows in the fopen below */
       }
       if (!access(part, F_OK)) { /* a killed run's results, which a restart goes on in: left as they are */
         ok = !access(part, W_OK);

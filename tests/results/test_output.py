@@ -163,3 +163,27 @@ def test_contact_mask_is_a_byte_per_point_on_any_number_of_ranks(tmp_path):
         three = f["fields/contact"][()]
     assert one["contact"].dtype == np.uint8 and three.dtype == np.uint8
     assert np.array_equal(one["contact"], three) and one["contact"].sum() > 0
+
+
+def test_output_folders_are_made_at_every_level_on_every_route(tmp_path):
+    """One rule for -adh_output and -adh_checkpoint and the Python route: the missing folders are
+    made, all levels, with the umask's permissions (nosuchdir/ was made with mode 0750 and
+    deep/er/ refused); a folder that cannot be made is one error naming the option."""
+    serial_only()
+    import adhbem
+    umask = os.umask(0)
+    os.umask(umask)
+    p = subprocess.run([EXE, "-adh_n", "16", "-adh_path", "0.01,0", "-adh_steps", "1", "-adh_output", "deep/er/out.h5",
+                        "-adh_checkpoint", "ck/pt/ck.h5"], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "deep/er/out.h5").is_file() and (tmp_path / "ck/pt/ck.h5").is_file()
+    for folder in ("deep", "deep/er", "ck", "ck/pt"):
+        assert (tmp_path / folder).stat().st_mode & 0o777 == 0o777 & ~umask
+    s = adhbem.Solver(n=16, path=[0.01, 0.0], steps=1, output=str(tmp_path / "py/deep/out.h5"))
+    s.solve_path(progress=False)
+    s.write(str(tmp_path / "py/write/er/out.h5"))
+    assert (tmp_path / "py/deep/out.h5").is_file() and (tmp_path / "py/write/er/out.h5").is_file()
+    (tmp_path / "afile").write_text("")
+    p = subprocess.run([EXE, "-adh_n", "16", "-adh_output", "afile/out.h5"], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert p.returncode != 0 and p.stderr.strip().startswith("adhbem: error: -adh_output: cannot write afile/out.h5: ")
+    assert len(p.stderr.strip().splitlines()) == 1

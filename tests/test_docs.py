@@ -4,6 +4,7 @@ and type of include/adhbem.h and every Python entry point: they are made from th
 function without a manual page or a docstring that Sphinx cannot read fails here."""
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -21,12 +22,32 @@ def site(tmp_path_factory):
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("builds the site in a process of its own")
     out = tmp_path_factory.mktemp("site")
+    # The quick tutorials' pages (sphinx-gallery writes them into the source tree, docs/tutorials/,
+    # and reuses them while the scripts are unchanged) must never reach the site ./run docs builds:
+    # the quick site is built from a tree of its own, the project's folders linked and docs/ copied.
+    tree = out / "tree"
+    tree.mkdir()
+    for entry in os.listdir(ROOT):
+        if entry != "docs" and not entry.startswith("."):
+            os.symlink(os.path.join(ROOT, entry), tree / entry)
+    shutil.copytree(os.path.join(ROOT, "docs"), tree / "docs", ignore=shutil.ignore_patterns("tutorials"))
+    before = published_tutorials()
     env = dict(os.environ, ADHBEM_TUTORIAL_QUICK="1", MPLBACKEND="Agg")
+    env.setdefault("ADHBEM_BUILD", os.path.join(ROOT, "build"))
     r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-                        "-d", str(out / "doctrees"), os.path.join(ROOT, "docs"), str(out / "html")],
+                        "-d", str(out / "doctrees"), str(tree / "docs"), str(out / "html")],
                        capture_output=True, text=True, env=env, timeout=1200)
     assert r.returncode == 0, f"the site does not build cleanly:\n{r.stderr[-6000:]}"
+    assert published_tutorials() == before, "the quick tutorials were written where ./run docs reads them"
     return out / "html"
+
+
+def published_tutorials():
+    """What docs/tutorials/ (sphinx-gallery's pages for ./run docs) holds: names and times."""
+    folder = os.path.join(ROOT, "docs", "tutorials")
+    if not os.path.isdir(folder):
+        return {}
+    return {os.path.join(d, f): os.stat(os.path.join(d, f)).st_mtime_ns for d, _, fs in os.walk(folder) for f in fs}
 
 
 def text_of(path):

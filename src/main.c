@@ -124,8 +124,6 @@ static PetscErrorCode CheckUnprefixedOptions(void)
   PetscFunctionReturn(0);
 }
 
-/* What the run says of its largest tension: a pull-off force only when the surfaces came apart,
-   else why it is not one (full contact, the path ended in contact). */
 /* What the summary says of the largest tension: a pull-off force only when the surfaces came apart,
    else why it is not one (full contact to the end, or the path ended in contact). */
 static PetscErrorCode PullOffWords(const AdhCurve *curve, PetscInt npoints, const AdhResolution *r, char words[], size_t len)

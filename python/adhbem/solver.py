@@ -136,28 +136,39 @@ class Solver:
         kinds = {o.name: o.kind for o in solver_options()}
 
         def number(key, v, integer):
-            if isinstance(v, (complex, np.complexfloating)):
-                raise TypeError(f"{key}: expected a real number, got the complex {v!r}")
+            """v checked; the value to pass (an integral float as an int for an integer option)."""
             if isinstance(v, np.ndarray) and v.ndim == 0:
                 v = v.item()
+            if isinstance(v, (complex, np.complexfloating)):
+                raise TypeError(f"{key}: expected a real number, got the complex {v!r}")
+            if isinstance(v, (bool, np.bool_)) and not integer:
+                return v  # a real that switches (progress=False: off; _option_value gives 0 or 1)
+            if isinstance(v, (bool, np.bool_)):
+                raise TypeError(f"{key}: expected {'an integer' if integer else 'a real number'}, got bool {v!r}")
             if isinstance(v, str):
+                if v.strip().upper() in ("DEFAULT", "PETSC_DEFAULT", "DECIDE", "PETSC_DECIDE", "DETERMINE", "PETSC_DETERMINE"):
+                    return v  # PETSc's own words
                 try:
-                    v = int(v) if integer else float(v)
+                    x = int(v) if integer else float(v)
                 except ValueError:
                     raise ValueError(f"{key}: expected {'an integer' if integer else 'a real number'}, got {v!r}") from None
-            elif not isinstance(v, numbers.Real) or isinstance(v, (bool, np.bool_)):
-                raise TypeError(f"{key}: expected {'an integer' if integer else 'a real number'}, got {type(v).__name__} {v!r}")
-            if integer and not float(v).is_integer():
-                raise ValueError(f"{key}: expected an integer, got {v!r}")
-            if math.isnan(float(v)):
+            else:
+                try:
+                    x = float(v)  # numbers.Real, NumPy scalars, Decimal, Fraction
+                except (TypeError, ValueError):
+                    raise TypeError(f"{key}: expected {'an integer' if integer else 'a real number'}, got {type(v).__name__} {v!r}") from None
+            if math.isnan(float(x)):
                 raise ValueError(f"{key}: NaN is not a value")
+            if integer and not float(x).is_integer():
+                raise ValueError(f"{key}: expected an integer, got {v!r}")
+            return int(x) if integer and not isinstance(v, str) else v
 
         for key, value in options.items():
             kind = kinds.get(key)
             if kind in ("int", "real"):
                 if _is_sequence(value):
                     raise TypeError(f"{key}: expected one number, got a sequence {value!r}")
-                number(key, value, kind == "int")
+                options[key] = number(key, value, kind == "int")
             elif kind in ("int list", "real list"):
                 if isinstance(value, str):  # the option's own text, "0,0.02,-0.03"
                     values = [v for v in value.split(",") if v.strip()]
@@ -165,8 +176,9 @@ class Solver:
                     values = list(np.asarray(value, dtype=object).ravel()) if _is_sequence(value) else [value]
                 if not values:
                     raise ValueError(f"{key}: an empty sequence (give at least one value)")
-                for v in values:
-                    number(key, v, kind == "int list")
+                checked = [number(key, v, kind == "int list") for v in values]
+                if not isinstance(value, str):
+                    options[key] = checked if _is_sequence(value) else checked[0]
 
     def _init(self, comm, options):
         global _solver_count

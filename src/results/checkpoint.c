@@ -225,7 +225,11 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   if (!err) {
     PetscCall(AdhOutputWriteBegin_Private());
     ierr = WriteOpen(s, v, leg, step);
-    if (!ierr) ierr = PetscViewerDestroy(&v);
+    ierr = AdhH5Agree_Private(s->comm, ierr); /* a rank's failure is every rank's before the collective close */
+    if (!ierr) {
+      ierr = PetscViewerDestroy(&v);
+      if (ierr) v = NULL; /* half-destroyed: not to be closed again */
+    }
     ierr = AdhOutputWriteEnd_Private(s, ierr, "-adh_checkpoint", part, kept);
   }
   PetscCall(AdhOutputAbandon_Private(&v)); /* after a failure: not a write more (its FILE.part is removed) */

@@ -48,7 +48,7 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
   ierr             = Begin(s, *viewer, file);
   ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, "no state was written");
   s->output_failed = (PetscBool)(s->output_failed || ierr);
-  PetscCall(ierr);
+  PetscCall(ierr); /* the caller closes *viewer as it is (AdhOutputAbandon_Private) */
   PetscFunctionReturn(0);
 }
 
@@ -168,7 +168,11 @@ PetscErrorCode AdhOutputClose_Private(AdhSolver s, const char file[], PetscViewe
 
   PetscFunctionBegin;
   PetscCall(AdhOutputAppend_Private(s, *viewer));
-  PetscCall(PetscViewerDestroy(viewer));
+  { /* flushed just now: a close that fails anyway leaves the viewer half-destroyed, not to be closed again */
+    PetscErrorCode ierr = PetscViewerDestroy(viewer);
+    if (ierr) *viewer = NULL;
+    PetscCall(ierr);
+  }
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(AdhOutputPartName_Private(file, part, sizeof(part)));
   PetscCall(AdhOutputReleaseReserve_Private(s, part));
@@ -215,8 +219,8 @@ PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
-  PetscCall(AdhOutputOpen_Private(s, file, &viewer));
-  ierr = AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0));
+  ierr = AdhOutputOpen_Private(s, file, &viewer);
+  if (!ierr) ierr = AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0));
   if (!ierr) ierr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE});
   if (!ierr) ierr = AdhOutputClose_Private(s, file, &viewer);
   PetscCall(AdhOutputAbandon_Private(&viewer)); /* after a failed write: FILE.part as it is */

@@ -84,6 +84,7 @@ def test_no_c_traceback_unless_asked():
     (dict(gamma=2e-3 + 1j), TypeError, "gamma: expected a real number, got the complex"),
     (dict(radius=[1.0, 2.0]), TypeError, "radius: expected one number, got a sequence"),
     (dict(steps=2.5), ValueError, "steps: expected an integer, got 2.5"),
+    (dict(steps=[1]), TypeError, "steps: expected one number"),
     (dict(steps=True), TypeError, "steps: expected an integer, got bool"),
     (dict(path=[]), ValueError, "path: an empty sequence"),
     (dict(path=[0.01, "deep"]), ValueError, "path: expected a real number, got 'deep'"),

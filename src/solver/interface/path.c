@@ -469,18 +469,20 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
   s->stoppable     = PETSC_FALSE;
   /* What was computed before an error or a stop is still written, marked incomplete; after a
      failed write the file is closed as it is (FILE.part, whole to the last state written). The
-     first error is the one told: a failure of the close after it is not. */
+     first error is the one told: a failure of the close after it is not (after a stop, it is). */
   if (viewer) {
-    if (ierr) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    const PetscBool quiet = (PetscBool)(ierr && !(ierr == PETSC_ERR_SIG && s->stop_signal));
+    PetscErrorCode  aerr;
+    if (quiet) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
     if (!s->output_failed) {
       cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
       if (!cerr) cerr = AdhResults.close(s, s->output, &viewer);
     }
-    PetscCall(AdhResults.abandon(&viewer)); /* not closed (a write failed): HDF5 lets go of FILE.part as it is */
-    if (ierr) {
+    aerr = AdhResults.abandon(&viewer); /* not closed (a write failed): HDF5 lets go of FILE.part as it is */
+    if (quiet) {
       PetscCall(PetscPopErrorHandler());
       cerr = 0;
-    }
+    } else if (!cerr) cerr = aerr;
   }
   if (ierr == PETSC_ERR_SIG && s->stop_signal) {
     char msg[3 * PETSC_MAX_PATH_LEN];

@@ -212,7 +212,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
   if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is an annulus about %.3g grid spacings wide (%.0f elements)%s\n", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid, about 0.4/width relative)" : ""));
   else if (r.cohesive_elements > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone covers %.0f elements\n", (double)r.cohesive_elements));
-  if (s->curve.state[r.state].contact_points == s->grid->Nx * s->grid->Ny) {
+  if (r.apart < 0 && s->curve.state[r.state].contact_points == s->grid->Nx * s->grid->Ny) {
     /* the whole cell sticks: no edge, nothing for the grid to resolve */
     PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) the whole grid is in contact: no contact edge, no pull-off to resolve\n", r.state, (double)r.force));
     PetscFunctionReturn(0);

@@ -206,7 +206,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(AdhSolverGetResolution(s, &r));
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
-  if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? " (under 10: the pull-off force depends on the grid)" : ""));
+  if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? (r.apart >= 0 || !s->curve.n ? " (under 10: the pull-off force depends on the grid)" : " (under 10: the largest tension depends on the grid)") : ""));
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));

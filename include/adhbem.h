@@ -164,7 +164,8 @@ typedef struct {
   PetscInt  patches;                 /* connected clusters of the contact set (4-neighbours; wrapping on a periodic cell) */
   PetscReal mean_gap;                /* mean of the gap g over the whole grid */
   PetscReal max_tension_ratio;       /* largest tension on the set over the critical stress, max(-p/Sigma) (0 without adhesion) */
-  PetscReal area_tension, area_compression; /* area of the set carrying p < 0, and p > 0 */
+  PetscReal area_tension;            /* area of the contact set carrying tension, p < 0 */
+  PetscReal area_compression;        /* area of the contact set carrying compression, p > 0 */
   PetscInt  pulled_off;              /* 1 on the state that ends a leg by pull-off */
   PetscInt  fft_pairs;               /* forward+backward FFT pairs of the step: compliance and preconditioner */
   PetscReal detach_ratio;            /* the detachment criterion's largest demand over its limit on the set, as a stress ratio (1: a point is about to let go; pohrt-popov: max_tension_ratio) */
@@ -257,6 +258,9 @@ PETSC_EXTERN PetscErrorCode AdhSolverStep(AdhSolver, PetscReal target);
 PETSC_EXTERN PetscErrorCode AdhSolverSolvePath(AdhSolver);
 /* The -adh_path: its npath points, and the steps of each leg between them (borrowed). */
 PETSC_EXTERN PetscErrorCode AdhSolverGetPath(AdhSolver, PetscInt *npath, const PetscReal *path[], PetscInt *steps);
+/* Whether a pull-off ends the path (the default) or only its leg (-adh_stop_at_pulloff). */
+PETSC_EXTERN PetscErrorCode AdhSolverSetStopAtPullOff(AdhSolver, PetscBool);
+PETSC_EXTERN PetscErrorCode AdhSolverGetStopAtPullOff(AdhSolver, PetscBool *);
 /* Records the state the last AdhSolverStart or AdhSolverStep reached, as a path does: computed
    (its seconds counted from t0, a PetscTime()), appended to the curve, and returned in *st. */
 PETSC_EXTERN PetscErrorCode AdhSolverRecordState(AdhSolver, PetscLogDouble t0, AdhState *st);
@@ -310,6 +314,7 @@ typedef struct {
   PetscInt  apart;                   /* the first state where the surfaces came apart (pulled_off): only then is the largest tension the pull-off force (-1: they did not) */
   PetscInt  full_contact;            /* the first state in full contact, every point of the grid in the contact set (-1: none) */
   PetscInt  last_points;             /* the points in contact at the last state (the path ended with them when not apart) */
+  PetscInt  stopped;                 /* the state at which a pull-off ended the path with legs left (-adh_stop_at_pulloff; -1: it did not) */
 } AdhResolution;
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
 /* The lines on how well the grid resolves the adhesion (nothing without tension; a run that never

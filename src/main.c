@@ -144,6 +144,27 @@ static PetscErrorCode PullOffWords(const AdhCurve *curve, PetscInt npoints, cons
   PetscFunctionReturn(0);
 }
 
+/* -help lists adhbem's options first. PETSc prints its options for every program (the debugger,
+   malloc, logging, devices: some 70 lines) inside PetscInitialize when it sees -help; so -help is
+   held back from it and given to the options database after initialization, where the options
+   are listed as they are read. -help petsc (or -help intro) goes to PETSc as it is. Returns 1 when
+   held back. */
+static int HoldBackHelp(int *argc, char **argv)
+{
+  for (int k = 1; k < *argc; k++) {
+    if (strcmp(argv[k], "-help") && strcmp(argv[k], "--help")) continue;
+    if (k + 1 < *argc && (!strcmp(argv[k + 1], "petsc") || !strcmp(argv[k + 1], "intro"))) {
+      if (!strcmp(argv[k + 1], "petsc")) argv[k + 1] = (char *)"";
+      return 0;
+    }
+    for (int j = k; j + 1 < *argc; j++) argv[j] = argv[j + 1];
+    (*argc)--;
+    argv[*argc] = NULL;
+    return 1;
+  }
+  return 0;
+}
+
 static PetscErrorCode Run(AdhSolver solver)
 {
   const AdhCurve *curve;
@@ -157,6 +178,7 @@ static PetscErrorCode Run(AdhSolver solver)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_view [ascii[:FILE]]: Print the solver set-up (to FILE) (PetscObjectViewFromOptions)\n"));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  -adh_traceback: <FALSE> On an error, print PETSc's traceback instead of one line (None)\n"));
     PetscCall(AdhSolverSetUp(solver));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "----------------------------------------\nPETSc's options for every program (-log_view, -info, -options_file, -malloc_debug, the debugger, ...): adhbem -help petsc\n"));
     PetscFunctionReturn(0);
   }
   PetscCall(AdhSolverSetUp(solver));
@@ -206,7 +228,14 @@ int main(int argc, char **argv)
   }
   AvoidStaleLocks();
   if (CheckOptionsFiles(argc, argv)) return 1;
-  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  {
+    const int held = HoldBackHelp(&argc, argv);
+    PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+    if (held) {
+      PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", help));
+    }
+  }
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-adh_traceback", &traceback, NULL));
   if (!traceback) PetscCall(PetscPushErrorHandler(ErrorOneLine, NULL));
   PetscCall(AdhUseOneBLASThread());

@@ -17,7 +17,8 @@ Run it yourself from a clone (after ``./run build``)::
 # Lengths in units of the sphere's radius, stresses in units of the reduced modulus ``E*``. The
 # work of adhesion is chosen so that the contact radius at pull-off, ``a_c``, spans 12 grid
 # spacings on a 128 x 128 grid of side 1 (the resolution report says whether the grid resolves
-# the adhesion; 10 spacings or more is the rule). The sphere touches at ``d = 0``, is pressed in
+# the adhesion: under 10 spacings it says the pull-off force depends on the grid; aim for 20
+# where a few percent matter). The sphere touches at ``d = 0``, is pressed in
 # to ``d1`` and pulled back out beyond the point where it comes off.
 import os
 

@@ -106,4 +106,5 @@ for name, s in (("coarse", sticky), ("fine", fine)):
 # loop between loading and unloading is the energy lost to the jumps of asperity contacts in and
 # out. When the two grids agree to a few percent the answer belongs to the surface and not to the
 # grid; when they do not, refine further (or make the adhesion weaker relative to the asperities'
-# size: the resolution report's JKR radius is the guide, 10 spacings or more).
+# size: the resolution report's JKR radius is the guide; under 10 spacings the run says the
+# pull-off force depends on the grid, and 20 is the aim).

@@ -104,7 +104,7 @@ ax2.legend(fontsize=8)
 # The same run from the file, once levelled and saved (``np.save("scan_levelled.npy", z)``)::
 #
 #     mpirun -n 4 build/adhbem -adh_topography scan_levelled.npy -adh_n 128 -adh_size 12.8 \
-#         -adh_E_star 2 -adh_gamma 0.05 -adh_boundary free -adh_start adhesive \
+#         -adh_E_star 50 -adh_gamma 0.05 -adh_boundary free -adh_start adhesive \
 #         -adh_path 0,0.3,-0.3 -adh_steps 25 -adh_output scan.h5
 #
 # A topography on the free boundary gets a warning line unless ``-adh_boundary free`` is given,

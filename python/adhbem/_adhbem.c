@@ -519,10 +519,12 @@ static PyObject *py_solver_path(PyObject *self, PyObject *args)
   PetscInt         n, steps;
   const PetscReal *path;
   if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
+  PetscBool        stop;
   PyPetscCall(AdhSolverGetPath(solver, &n, &path, &steps));
+  PyPetscCall(AdhSolverGetStopAtPullOff(solver, &stop));
   list = PyList_New(n);
   for (PetscInt k = 0; k < n; k++) PyList_SET_ITEM(list, k, PyFloat_FromDouble((double)path[k]));
-  return Py_BuildValue("Nn", list, (Py_ssize_t)steps);
+  return Py_BuildValue("NnO", list, (Py_ssize_t)steps, stop ? Py_True : Py_False);
 }
 
 static PyObject *py_solver_state(PyObject *self, PyObject *args)
@@ -713,7 +715,7 @@ static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
   AdhResolution r;
   if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetResolution(solver, &r));
-  return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points);
+  return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped);
 }
 
 static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)
@@ -737,7 +739,7 @@ static PyMethodDef methods[] = {
   {"solver_create", py_solver_create, METH_VARARGS, "solver_create(comm, prefix) -> the solver as a PETSc.Object (options read with the prefix)"},
   {"solver_start", py_solver_start, METH_VARARGS, "solver_start(s, d) -> state, the first row of a new curve"},
   {"solver_step", py_solver_step, METH_VARARGS, "solver_step(s, d) -> state, appended to the curve"},
-  {"solver_path", py_solver_path, METH_VARARGS, "solver_path(s) -> (path points, steps per leg)"},
+  {"solver_path", py_solver_path, METH_VARARGS, "solver_path(s) -> (path points, steps per leg, a pull-off ends the path)"},
   {"solver_state", py_solver_state, METH_VARARGS, "solver_state(s) -> state"},
   {"solver_solve_path", py_solver_solve_path, METH_VARARGS, "solver_solve_path(s)"},
   {"solver_monitor", py_solver_monitor, METH_VARARGS, "solver_monitor(s, fn): fn(step, state) after every recorded state"},

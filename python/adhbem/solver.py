@@ -347,7 +347,7 @@ class Solver:
             self._bar_monitor = True
         if self.compliance.getComm().getRank() != 0:
             return None
-        path, steps = _adhbem.solver_path(self._s)
+        path, steps, _ = _adhbem.solver_path(self._s)
         self._bar = tqdm(total=1 + (len(path) - 1) * steps, unit="state", desc="adhbem", leave=True)
         return self._bar
 
@@ -372,7 +372,8 @@ class Solver:
         All ranks must take the same states: a ``break`` on one rank only leaves the others
         waiting. No results file is written as it goes: ``write(FILE)`` after the loop writes the
         curve and the last state's fields; the options ``output``, ``checkpoint`` and ``restart``
-        are ``solve_path()``'s.
+        are ``solve_path()``'s. As in ``solve_path()``, a pull-off ends the path unless the option
+        ``stop_at_pulloff`` is false (then only its leg ends).
 
         Examples
         --------
@@ -383,7 +384,7 @@ class Solver:
             if name in self._options:
                 raise ValueError(f"iterate_path: option {name!r} is solve_path()'s (iterate_path writes no file as it goes; "
                                  "call write(FILE) after the loop)")
-        path, steps = _adhbem.solver_path(self._s)
+        path, steps, stop_at_pulloff = _adhbem.solver_path(self._s)
         yield self.start(path[0])
         for a, b in zip(path[:-1], path[1:]):
             for k in range(1, steps + 1):
@@ -392,6 +393,8 @@ class Solver:
                 yield state
                 if state["pulled_off"]:
                     break  # the rest of this leg has nothing in contact
+            if state["pulled_off"] and stop_at_pulloff:
+                return  # and the path ends there unless stop_at_pulloff=False
 
     def monitor(self, fn: Callable[[int, dict], None]) -> None:
         """Adds a function called on every rank after each recorded state.
@@ -437,7 +440,8 @@ class Solver:
         - ``apart``: the first curve row where the surfaces came apart (-1: they did not, and the
           largest tension is no pull-off force); ``full_contact``: the first row in full contact,
           every grid point in the set (-1: none); ``last_points``: the points in contact at the
-          last row.
+          last row; ``stopped``: the row at which a pull-off ended ``solve_path()`` with legs
+          left (the option ``stop_at_pulloff``, true by default; -1: it did not).
 
         The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``, ...
         """
@@ -464,7 +468,8 @@ class Solver:
         - ``patches``: connected clusters of the contact set; ``mean_gap``: the gap's mean;
         - ``max_tension_ratio``: the largest tension over Sigma; ``detach_ratio``: the
           criterion's largest demand over its limit (1: a point is about to let go);
-        - ``area_tension``, ``area_compression``: contact area carrying p < 0 and p > 0;
+        - ``area_tension``: area of the contact set carrying tension, p < 0;
+        - ``area_compression``: area of the contact set carrying compression, p > 0;
         - ``pulled_off``: 1 on the state where the contact was lost (the leg ends there);
         - ``smallest_tensile_patch``, ``small_patch_tension``: the smallest patch with a net
           tension, and the share of the tension carried by patches under 314 points;

@@ -39,7 +39,7 @@ static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, c
 @*/
 PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[], PetscReal *Estar)
 {
-  PetscReal E1 = 1.0, nu1 = 0.0, E2 = PETSC_INFINITY, nu2 = 0.0, Es = *Estar;
+  PetscReal E1 = 1.0, nu1 = 0.0, E2 = (PetscReal)INFINITY, nu2 = 0.0, Es = *Estar;
   PetscBool setEs, setE1, setE2, setnu1, setnu2;
 
   PetscFunctionBegin;
@@ -47,7 +47,7 @@ PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[
   PetscCall(PetscOptionsReal("-adh_E_star", "Reduced modulus E*", "", Es, &Es, &setEs));
   PetscCall(PetscOptionsReal("-adh_E1", "Young's modulus of body 1 (instead of -adh_E_star)", "", E1, &E1, &setE1));
   PetscCall(PetscOptionsReal("-adh_nu1", "Poisson ratio of body 1", "", nu1, &nu1, &setnu1));
-  PetscCall(PetscOptionsReal("-adh_E2", "Young's modulus of body 2 (default: rigid)", "", E2, &E2, &setE2));
+  PetscCall(PetscOptionsReal("-adh_E2", "Young's modulus of body 2 (default inf: rigid)", "", E2, &E2, &setE2));
   PetscCall(PetscOptionsReal("-adh_nu2", "Poisson ratio of body 2", "", nu2, &nu2, &setnu2));
   PetscOptionsEnd();
   if (setE1 || setE2 || setnu1 || setnu2) {

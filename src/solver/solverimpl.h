@@ -267,6 +267,8 @@ struct _p_AdhSolver {
   /* path and output */
   PetscReal *path;
   PetscInt   npath, steps;
+  PetscBool  stop_at_pulloff; /* -adh_stop_at_pulloff: a pull-off ends the path, not only its leg */
+  PetscInt   path_stopped;    /* the curve row at which it did, with legs left (-1: it did not) */
   AdhStart   start;
   PetscBool  monitor;
   PetscInt   fields;            /* -adh_fields: which fields to write, a mask of ADH_FIELD_* */

@@ -159,7 +159,8 @@ def test_reloading_after_pull_off():
     """Path [F0, -1.5 F_adh, F0] (N = 48, a_c/h = 15): the unloading leg ends at pull-off; on the
     loading leg the targets F <= 0 find the bodies apart (no contact, no force), then the first
     positive target starts again from first touch, and d and the contact grow to the final force
-    F0 (the reloaded contact's radius against the adhesion-free start's and JKR's is printed)."""
+    F0 (the reloaded contact's radius against the adhesion-free start's and JKR's is printed).
+    The legs after a pull-off run only when told (stop_at_pulloff=False)."""
     N, ratio, steps = 48, 15.0, 12
     ac = ratio / N
     gamma = gamma_for(ac)
@@ -167,7 +168,7 @@ def test_reloading_after_pull_off():
     F0 = hertz_force(1.3 * ac)
     t0 = time.perf_counter()
     c = adhbem.Solver(n=N, size=1.0, E_star=E, gamma=gamma, radius=R, start="hertz", control="force",
-                      path=[F0, -1.5 * Fadh, F0], steps=steps).solve_path()
+                      path=[F0, -1.5 * Fadh, F0], steps=steps, stop_at_pulloff=False).solve_path()
     seconds = time.perf_counter() - t0
     F, d, n, off = c["force"], c["d"], c["contact_points"], c["pulled_off"]
     po = np.nonzero(off)[0]

@@ -186,3 +186,19 @@ def test_topography_on_the_default_free_boundary_warns(tmp_path):
         for boundary in ("free", "periodic"):
             r = subprocess.run([EXE, *args, "-adh_boundary", boundary], capture_output=True, text=True, env=ENV, timeout=300)
             assert r.returncode == 0 and "warning" not in r.stdout + r.stderr, r.stdout
+
+
+def test_help_lists_adhbems_options_first():
+    """-help: the intro, then adhbem's groups, with no PETSc option before the first of them and
+    no sentinel default (-adh_E2 shows inf, a rigid body); a line at the end points to PETSc's
+    options for every program, which -help petsc lists before adhbem's."""
+    serial_only()
+    out = subprocess.run([EXE, "-help"], capture_output=True, text=True, timeout=60).stdout
+    lines = out.splitlines()
+    first = next(k for k, line in enumerate(lines) if re.match(r"\s+-\w", line))
+    assert lines[first].lstrip().startswith("-adh_n "), lines[:first + 1]
+    assert "Options for all PETSc programs" not in out and "-on_error_attach_debugger" not in out
+    assert "4.49423e+307" not in out and re.search(r"^  -adh_E2 <inf\. : inf\.>", out, re.M)
+    assert "PETSc's options for every program (-log_view, -info, -options_file, -malloc_debug, the debugger, ...): adhbem -help petsc" in out
+    full = subprocess.run([EXE, "-help", "petsc"], capture_output=True, text=True, timeout=60).stdout
+    assert full.index("Options for all PETSc programs") < full.index("adhbem grid:")

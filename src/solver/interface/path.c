@@ -249,6 +249,61 @@ PetscErrorCode AdhSolverGetPath(AdhSolver s, PetscInt *npath, const PetscReal *p
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhSolverSetStopAtPullOff - Sets whether a pull-off ends the path or only its leg
+
+  Logically Collective
+
+  Input Parameters:
++ s    - the solver
+- stop - `PETSC_TRUE` (the default): the path ends at the state that pulled off; `PETSC_FALSE`: only its leg does,
+         and the legs after it run (a path that comes back into contact, for a second cycle)
+
+  Options Database Key:
+. -adh_stop_at_pulloff <true> - the same
+
+  Level: intermediate
+
+  Notes:
+  After a pull-off nothing is in contact, and the legs that follow record states apart until the path comes back to
+  the surface. When the path stops with legs left, `AdhSolverResolutionView()` says so and `AdhSolverGetResolution()`
+  gives the state (its `stopped`).
+
+.seealso: `AdhSolverGetStopAtPullOff()`, `AdhSolverSolvePath()`, `AdhSolverIsPulledOff()`
+@*/
+PetscErrorCode AdhSolverSetStopAtPullOff(AdhSolver s, PetscBool stop)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(s, stop, 2);
+  s->stop_at_pulloff = stop;
+  PetscFunctionReturn(0);
+}
+
+/*@
+  AdhSolverGetStopAtPullOff - Gets whether a pull-off ends the path or only its leg
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameter:
+. stop - `PETSC_TRUE`: a pull-off ends the path (the default)
+
+  Level: intermediate
+
+.seealso: `AdhSolverSetStopAtPullOff()`
+@*/
+PetscErrorCode AdhSolverGetStopAtPullOff(AdhSolver s, PetscBool *stop)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidBoolPointer(stop, 2);
+  *stop = s->stop_at_pulloff;
+  PetscFunctionReturn(0);
+}
+
 /* Records the current state in the curve and the results file (its fields too), then calls the
    monitors: a monitor that fails finds the state already written. */
 static PetscErrorCode Record(AdhSolver s, PetscLogDouble t0, PetscViewer viewer)
@@ -313,12 +368,17 @@ static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer, PetscInt l
   s->progress_last = s->path_start;
   s->path_states   = 1 + (s->npath - 1) * s->steps;
   s->path_first    = s->restart[0] ? s->curve.n : 0;
+  s->path_stopped  = -1;
   if (s->restart[0]) {
     /* go on after the checkpoint's state; a leg that ended in pull-off is over */
     if (leg0 == 0) leg0 = 1;
     else if (s->pulled_off) {
       leg0++;
       step0 = 0;
+      if (s->stop_at_pulloff) { /* the path ended there */
+        if (leg0 < s->npath) s->path_stopped = s->curve.n - 1;
+        leg0 = s->npath;
+      }
     }
   } else {
     PetscCall(PetscTime(&t0));
@@ -334,6 +394,10 @@ static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer, PetscInt l
       PetscCall(Record(s, t0, viewer));
       PetscCall(AfterRecord(s, leg, k));
       if (s->pulled_off) break; /* the rest of this leg has nothing in contact */
+    }
+    if (s->pulled_off && s->stop_at_pulloff) { /* and by default the path ends there */
+      if (leg + 1 < s->npath) s->path_stopped = s->curve.n - 1;
+      break;
     }
   }
   PetscFunctionReturn(0);

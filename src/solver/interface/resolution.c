@@ -139,7 +139,8 @@ PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
 
   r->apart is the first state where the surfaces came apart (a leg ended in pull-off); only then is the largest tension
   the pull-off force. Without it (-1) the path ended in contact, r->last_points of them, or in full contact,
-  r->full_contact the first state with every grid point in the contact set.
+  r->full_contact the first state with every grid point in the contact set. r->stopped is the state at which a pull-off
+  ended a path with legs left (`AdhSolverSetStopAtPullOff()`), -1 otherwise.
 
 .seealso: `AdhSolverResolutionView()`, `AdhCurveGetPullOffState()`, `AdhSolverGetCurve()`, `AdhSolverComputeState()`
 @*/
@@ -168,6 +169,7 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
     if (s->curve.state[k].contact_points == s->grid->Nx * s->grid->Ny && r->full_contact < 0) r->full_contact = k;
   }
   r->last_points = s->curve.n ? s->curve.state[s->curve.n - 1].contact_points : 0;
+  r->stopped     = s->path_stopped < s->curve.n ? s->path_stopped : -1;
   PetscFunctionReturn(0);
 }
 
@@ -192,6 +194,8 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   is printed when the curve has states and none touched (the path
   has warned that it never touches).
 
+  When a pull-off ended the path with legs left (`AdhSolverSetStopAtPullOff()`), a line says so first.
+
   The adhbem executable prints it at the end of a run.
 
 .seealso: `AdhSolverGetResolution()`, `AdhSolverView()`, `AdhSolverSolvePath()`
@@ -206,6 +210,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(AdhSolverGetResolution(s, &r));
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
+  if (r.stopped >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: path: stopped at the pull-off (state %" PetscInt_FMT ", d = %g) with legs left: -adh_stop_at_pulloff false runs them\n", r.stopped, (double)s->curve.state[r.stopped].d));
   if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? (r.apart >= 0 || !s->curve.n ? " (under 10: the pull-off force depends on the grid)" : " (under 10: the largest tension depends on the grid)") : ""));
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;

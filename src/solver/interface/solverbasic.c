@@ -54,6 +54,8 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   PetscCall(PetscStrncpy(s->gamma_dataset, "gamma", sizeof(s->gamma_dataset)));
   s->start     = ADH_START_HERTZ;
   s->steps     = 10;
+  s->stop_at_pulloff = PETSC_TRUE;
+  s->path_stopped    = -1;
   s->max_outer = 100000;
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;

@@ -56,6 +56,7 @@ static PetscErrorCode ParseFields_Private(PetscOptionItems *PetscOptionsObject, 
 . -adh_control <displacement,force>                  - the load control, `AdhSolverSetControlType()`
 . -adh_path <v0,v1,...>                              - the path's breakpoints, at least two (default 0.01,0)
 . -adh_steps <10>                                    - the steps per leg of the path
+. -adh_stop_at_pulloff <true>                        - a pull-off ends the path (false: only its leg)
 . -adh_start <hertz,adhesive>                        - the starting state, `AdhSolverStart()`
 . -adh_attach <griffith,reach,penetration>           - when a point joins the set
 . -adh_predictor <polonsky-keer,none>                - the contact-set predictor, `AdhSolverSetPredictorType()`
@@ -134,6 +135,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
     s->npath = n;
   }
   PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
+  PetscCall(PetscOptionsBool("-adh_stop_at_pulloff", "A pull-off ends the path (false: only its leg, and the legs after it run, to come back into contact)", "AdhSolver", s->stop_at_pulloff, &s->stop_at_pulloff, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror; the default with crack-closure), reach (its gap is below Sigma K_00, the gap it closes under its own critical tension; the default with pohrt-popov) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, &set));
   if (set) s->attach_chosen = PETSC_TRUE;

@@ -88,11 +88,11 @@ class Results:
         for k in self.COUNTS:
             if k in self.curve:
                 self.curve[k] = self.curve[k].astype(np.int64)
+        if "area_fraction" not in self.curve and "area" in self.curve and "Lx" in self.params:
+            # earlier files: the columns a file now has (area_fraction on every boundary)
+            self.curve["area_fraction"] = self.curve["area"] / (self.params["Lx"] * self.params["Ly"])
         if self.params.get("boundary") == "periodic" and "mean_pressure" not in self.curve and "force" in self.curve:
-            # earlier files: the columns a periodic cell's file now has
-            cell = self.params["Lx"] * self.params["Ly"]
-            self.curve["mean_pressure"] = self.curve["force"] / cell
-            self.curve["area_fraction"] = self.curve["area"] / cell
+            self.curve["mean_pressure"] = self.curve["force"] / (self.params["Lx"] * self.params["Ly"])
         group = self._file.get("fields") if self._file is not None else None
         self.field_names = [k for k in self.FIELDS if group is not None and k in group]
         self.states = group["state"][()].astype(np.int64) if group is not None and "state" in group else np.zeros(0, np.int64)

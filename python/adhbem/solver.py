@@ -269,7 +269,7 @@ class Solver:
         dict
             The state: a value per column of ``curve()``.
         """
-        return _adhbem.solver_start(self._s, float(d))
+        return self._derived(_adhbem.solver_start(self._s, float(d)))
 
     def step(self, d: float) -> dict:
         """One step from the current contact set, appended to the curve.
@@ -284,11 +284,28 @@ class Solver:
         dict
             The state reached: a value per column of ``curve()``.
         """
-        return _adhbem.solver_step(self._s, float(d))
+        return self._derived(_adhbem.solver_step(self._s, float(d)))
 
     def state(self) -> dict:
         """The current state, a value per column of ``curve()``, without recording it."""
-        return _adhbem.solver_state(self._s)
+        return self._derived(_adhbem.solver_state(self._s))
+
+    def _cell_area(self) -> float:
+        """The grid's area Lx Ly (fixed at set-up: asked for once), and whether it is a periodic cell."""
+        if getattr(self, "_cell", None) is None:
+            objects = _adhbem.solver_objects(self._s)
+            self._cell = objects["Lx"] * objects["Ly"]
+            self._periodic = objects["boundary"] == "periodic"
+        return self._cell
+
+    def _derived(self, state: dict) -> dict:
+        """A state with the columns the results file derives: area_fraction, and on a periodic
+        cell mean_pressure."""
+        cell = self._cell_area()
+        state["area_fraction"] = state["area"] / cell
+        if self._periodic:
+            state["mean_pressure"] = state["force"] / cell
+        return state
 
     def solve_path(self, progress: Optional[bool] = None) -> dict:
         """Runs the option ``path`` and returns the curve (see ``curve()``).
@@ -406,7 +423,13 @@ class Solver:
             The solver's fields are current inside it, so it can read or save them; an exception
             it raises stops the path and comes out of ``solve_path()``.
         """
-        _adhbem.solver_monitor(self._s, fn)
+        import weakref
+        solver = weakref.ref(self)  # the C solver holds the monitor: no cycle back to this object
+
+        def with_derived(step, state):
+            s = solver()
+            fn(step, s._derived(state) if s is not None else state)
+        _adhbem.solver_monitor(self._s, with_derived)
 
     @property
     def largest_tension(self) -> float:
@@ -476,18 +499,20 @@ class Solver:
         - ``cohesive_area``, ``cohesive_force``: the area off the contact that carries a traction
           (``criterion="dugdale"``'s cohesive zone) and its force, included in ``force`` (0 in the
           JKR limit);
-        - on a periodic cell, ``mean_pressure`` and ``area_fraction``: force and area over the
-          cell's area Lx Ly.
+        - ``area_fraction``: the area over the grid's area Lx Ly (on a free boundary the
+          fraction of the grid, for a measured map of the scan, in contact); on a periodic cell
+          also ``mean_pressure``, the force over the cell's area.
+
+        The states ``start()``, ``step()``, ``state()``, ``iterate_path()`` and the monitors
+        give have the same keys.
 
         ``adhbem.load(FILE).to_pandas()`` gives the same columns of a results file as a DataFrame.
         """
         curve = {k: np.asarray(v) for k, v in _adhbem.solver_curve(self._s).items()}
-        if getattr(self, "_cell", None) is None:  # the grid is fixed at set-up: asked for once
-            objects = _adhbem.solver_objects(self._s)
-            self._cell = objects["Lx"] * objects["Ly"] if objects["boundary"] == "periodic" else 0.0
-        if self._cell:
-            curve["mean_pressure"] = curve["force"] / self._cell
-            curve["area_fraction"] = curve["area"] / self._cell
+        cell = self._cell_area()
+        curve["area_fraction"] = curve["area"] / cell
+        if self._periodic:
+            curve["mean_pressure"] = curve["force"] / cell
         return curve
 
     def write(self, file: Union[str, os.PathLike]) -> None:

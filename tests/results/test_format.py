@@ -84,11 +84,20 @@ def test_pandas_round_trip(periodic, tmp_path):
     assert direct.shape == frame.shape
 
 
-def test_free_boundary_has_no_cell_columns(tmp_path):
+def test_free_boundary_has_the_area_fraction_and_no_mean_pressure(tmp_path):
+    """A free boundary's file has area_fraction, the grid's share in contact (for a measured map,
+    the scan's), in /curve and in the CSV; a mean pressure over a free grid is no cell's."""
     serial_only()
     out = run(tmp_path, "sphere", "-adh_path", "0.01,-0.004")
+    with h5py.File(out, "r") as f:
+        c, cell = f["curve"], f.attrs["Lx"] * f.attrs["Ly"]
+        np.testing.assert_allclose(c["area_fraction"][()], c["area"][()] / cell, rtol=1e-15)
+        assert 0 < c["area_fraction"][()].max() < 1
+        assert "mean_pressure" not in c
+    csv = np.genfromtxt(str(out).replace(".h5", ".csv"), delimiter=",", names=True)
+    assert "area_fraction" in csv.dtype.names and "mean_pressure" not in csv.dtype.names
     with adhbem.load(out) as r:
-        assert "mean_pressure" not in r.curve and "area_fraction" not in r.curve
+        assert "mean_pressure" not in r.curve and "area_fraction" in r.curve
         assert isinstance(r.params["boundary"], str)
         np.testing.assert_array_equal(r.params["path"], [0.01, -0.004])
 
@@ -103,7 +112,7 @@ def test_files_of_the_earlier_layout_still_read(periodic, tmp_path):
                 continue
             g.attrs[k] = np.bytes_(v) if isinstance(v, str) else v
         for k in f["curve"]:
-            if k not in ("mean_pressure", "area_fraction"):
+            if k not in ("mean_pressure", "area_fraction"):  # columns an earlier file lacks
                 g["curve/" + k] = f["curve"][k][()].astype(np.float64)
         g["curve/path"] = f.attrs["path"]
     with adhbem.load(periodic) as new, adhbem.load(old) as r:
@@ -126,3 +135,25 @@ def test_solver_curve_has_the_files_columns(periodic):
         for k in ("d", "force", "area", "mean_pressure", "area_fraction", "contact_points"):
             np.testing.assert_allclose(c[k], r.curve[k], rtol=1e-9, atol=1e-14, err_msg=k)
         assert c["contact_points"].dtype.kind == "i"
+
+
+def test_every_state_dict_has_the_files_columns():
+    """start(), step(), state(), iterate_path() and a monitor give the derived columns too:
+    area_fraction on every boundary, mean_pressure on a periodic cell, equal to curve()'s."""
+    free = adhbem.Solver(n=32, gamma=1e-3, path=[0.01, -0.004], steps=3)
+    seen = []
+    free.monitor(lambda step, state: seen.append(state))
+    states = list(free.iterate_path())
+    c = free.curve()
+    assert "mean_pressure" not in states[0] and "mean_pressure" not in c
+    np.testing.assert_array_equal([s["area_fraction"] for s in states], c["area_fraction"])
+    np.testing.assert_array_equal([s["area_fraction"] for s in seen], c["area_fraction"])
+    assert free.state()["area_fraction"] == c["area_fraction"][-1]
+    z = np.tile(0.01 * np.cos(2 * np.pi * (np.arange(32) + 0.5) / 32), (32, 1))
+    cell = adhbem.Solver(n=32, size=(2, 0.25), boundary="periodic", topography=z, path=[0, 0.008], steps=2)
+    first = cell.start(0.0)
+    step = cell.step(0.008)
+    c = cell.curve()
+    for k in ("area_fraction", "mean_pressure"):
+        np.testing.assert_array_equal([first[k], step[k]], c[k], err_msg=k)
+    assert step["area_fraction"] == step["area"] / 0.5 and step["mean_pressure"] == step["force"] / 0.5

@@ -18,6 +18,12 @@ if "petsc4py.PETSc" not in sys.modules:
     petsc4py.init(sys.argv)
 from petsc4py import PETSc  # noqa: E402
 
+try:  # an uncaught exception on several ranks: one traceback, no abort banner (_mpierrors.py)
+    from ._mpierrors import install as _install_mpi_errors
+    _install_mpi_errors(PETSc.COMM_WORLD.tompi4py())
+except ImportError:  # petsc4py without mpi4py: Python's own hook
+    pass
+
 from . import __version__  # noqa: E402
 
 _package_path = sys.modules[__package__].__path__  # where the extension is looked for

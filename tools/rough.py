@@ -16,7 +16,9 @@ the asperity contacts a few elements wide: then the numbers depend on the grid, 
 
 Run as `./run rough [--n N] [--np P] [--gamma G] [--cutoff C] [--steps K]`. The solve runs under mpirun on P
 ranks through the Python layer (the same solver as build/adhbem); the adhesive run writes its
-contact masks (-adh_fields contact, a byte per point), and the plot is adhbem.plot's.
+pressure fields and contact masks (-adh_fields pressure,contact: 9 bytes a point a state, about
+40 MB at 256^2), and the plot is adhbem.plot's: the pressure maps at the deepest indentation and
+at the largest tension, with a colour bar, as in the README's figure.
 """
 import argparse
 import math
@@ -50,7 +52,7 @@ def worker(a):
         # the same indentations on approach and retraction down to d = 0, then on to pull-off
         s = adhbem.Solver(**opts, gamma=gamma, start="adhesive",
                           path=[0.0, d1, 0.0, -d1], steps=a.steps,
-                          fields="contact" if gamma else "none",
+                          fields="pressure,contact" if gamma else "none",
                           output=os.path.join(a.results, name + ".h5"))
         if rank == 0:
             print(f"\n{name}: dgamma = {gamma}, N = {a.n}, path 0 -> {d1:.4g} -> 0 -> {-d1:.4g}, {a.steps} steps a leg", flush=True)
@@ -99,7 +101,7 @@ def report(a):
 
 def plot(a, c, c0):
     """adhbem.plot: the loop and the area fraction against mean pressure beside the non-adhesive
-    run, and the contact maps at the deepest indentation and the largest tension."""
+    run, and the pressure maps at the deepest indentation and the largest tension."""
     from adhbem.plot import plot as draw
     out = draw(os.path.join(a.results, "rough.h5"), compare=[os.path.join(a.results, "rough_nonadhesive.h5")],
                labels=[f"with adhesion ($\\Delta\\gamma$ = {a.gamma:g})", "without adhesion"])

@@ -144,6 +144,16 @@ def test_run_rough_job_on_a_small_grid(tmp_path):
         Fa, Fn = f["curve/force"][()], g["curve/force"][()]
         da, dn = f["curve/d"][()], g["curve/d"][()]
         assert f.attrs["complete"] and g.attrs["complete"]
+        # the figure's maps are pressure maps (the README's): the file holds the pressure fields
+        assert "pressure" in f["fields"] and "contact" in f["fields"]
+    import matplotlib
+    matplotlib.use("Agg")
+    from adhbem.plot import figure
+    fig = figure(str(tmp_path / "rough.h5"), compare=[str(tmp_path / "rough_nonadhesive.h5")])
+    maps = [a for a in fig.axes if a.images]
+    assert maps and all(a.images[0].get_cmap().name != "from_list" for a in maps)  # no binary contact map
+    assert sum(a.get_ylabel() == "pressure $p$" for a in fig.axes) >= 1, [a.get_ylabel() for a in fig.axes]
+    assert not any(t.get_text() == "contact" for a in fig.axes for t in a.get_yticklabels())
     # adhesion carries tension and dissipates energy; the non-adhesive loop is reversible
     assert Fa.min() < 0 and Fn.min() == 0.0
     assert np.trapz(Fa, da) > 0 and abs(np.trapz(Fn, dn)) < 1e-8 * Fn.max() * np.ptp(dn)

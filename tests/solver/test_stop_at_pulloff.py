@@ -18,7 +18,7 @@ PATH = [0.0, 0.02, -0.03, 0.02]
 OPTIONS = dict(n=64, radius=1.0, gamma=1e-3, start="adhesive", path=PATH, steps=10)
 ARGS = ["-adh_n", "64", "-adh_radius", "1", "-adh_gamma", "1e-3", "-adh_start", "adhesive",
         "-adh_path", ",".join(map(str, PATH)), "-adh_steps", "10"]
-STOPPED = re.compile(r"^adhbem: path: stopped at the pull-off \(state (\d+), d = (\S+)\) with legs left: "
+STOPPED = re.compile(r"^adhbem: path: stopped where the surfaces came apart \(state (\d+), d = (\S+)\), with legs left: "
                      r"-adh_stop_at_pulloff false runs them$", re.M)
 
 
@@ -69,6 +69,20 @@ def test_python_routes_stop_where_the_executable_does(tmp_path):
     longer = u.solve_path(progress=False)
     assert u.resolution["stopped"] == -1 and len(longer["d"]) > len(curve["d"])
     assert len(list(adhbem.Solver(**OPTIONS, stop_at_pulloff=False).iterate_path())) == len(longer["d"])
+    # a new curve on the same solver is not described by the earlier path's stop
+    list(s.iterate_path())
+    assert s.resolution["stopped"] == -1
+
+
+def test_a_run_without_adhesion_says_the_surfaces_came_apart_not_pull_off(tmp_path):
+    """Without adhesion the contact is lost at d = 0 on the way out; the path stops there with
+    the words that fit both (no 'pull-off' for a run that carried no tension)."""
+    serial_only()
+    p = subprocess.run([EXE, "-adh_n", "32", "-adh_path", "0,0.01,-0.01,0.01", "-adh_steps", "4"], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert STOPPED.search(p.stdout) and "no tension carried; contact lost at d = " in p.stdout, p.stdout
+    assert "pull-off" not in p.stdout.replace("-adh_stop_at_pulloff", ""), p.stdout
 
 
 def test_a_restart_from_the_pull_off_ends_the_path(tmp_path):

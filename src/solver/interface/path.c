@@ -69,7 +69,8 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhSolverSetUp(s));
-  s->curve.n = 0;
+  s->curve.n       = 0;
+  s->path_stopped = -1; /* a new curve: no earlier path's stop describes it */
   PetscCall(VecMin(s->h, NULL, &dtouch));
   if (s->start == ADH_START_HERTZ) {
     /* Adhesion-free contact at d0 (Sigma = 0), from the geometric overlap, or under force control

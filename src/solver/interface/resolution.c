@@ -169,7 +169,7 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
     if (s->curve.state[k].contact_points == s->grid->Nx * s->grid->Ny && r->full_contact < 0) r->full_contact = k;
   }
   r->last_points = s->curve.n ? s->curve.state[s->curve.n - 1].contact_points : 0;
-  r->stopped     = s->path_stopped < s->curve.n ? s->path_stopped : -1;
+  r->stopped     = s->path_stopped;
   PetscFunctionReturn(0);
 }
 
@@ -210,7 +210,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
   PetscCall(AdhSolverGetResolution(s, &r));
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
-  if (r.stopped >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: path: stopped at the pull-off (state %" PetscInt_FMT ", d = %g) with legs left: -adh_stop_at_pulloff false runs them\n", r.stopped, (double)s->curve.state[r.stopped].d));
+  if (r.stopped >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: path: stopped where the surfaces came apart (state %" PetscInt_FMT ", d = %g), with legs left: -adh_stop_at_pulloff false runs them\n", r.stopped, (double)s->curve.state[r.stopped].d));
   if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? (r.apart >= 0 || !s->curve.n ? " (under 10: the pull-off force depends on the grid)" : " (under 10: the largest tension depends on the grid)") : ""));
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;

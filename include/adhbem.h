@@ -215,6 +215,7 @@ typedef const char *AdhCriterionType;
 #define ADHCRITERIONPOHRTPOPOV   "pohrt-popov"
 #define ADHCRITERIONCRACKCLOSURE "crack-closure"
 #define ADHCRITERIONDUGDALE      "dugdale"
+#define ADHCRITERIONEXPONENTIAL  "exponential"
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);

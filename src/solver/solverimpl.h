@@ -85,7 +85,23 @@ typedef struct {
      worth its cost below it); PETSC_MAX_REAL: check again at the next iteration; 0 with NONE:
      decided for the rest of the solve. */
   PetscErrorCode (*decide)(AdhSolver, Vec xC, PetscReal perr, AdhDetachDecision *, PetscReal *needed);
+  /* Optional: a cohesive law, whose steps minimise the total energy (interface/minimize.c) instead
+     of updating a set. The potential phi per unit area at gap g >= 0 of a point with work of
+     adhesion dgamma > 0 (phi(0) = -dgamma, phi -> 0 far apart), its derivative (the attraction,
+     >= 0) and its second derivative. */
+  void (*law)(const void *data, PetscReal dgamma, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi);
+  /* with a law: the gap below which a point off the contact counts in the cohesive zone, and the
+     law's largest attraction, both for a point with work of adhesion dgamma */
+  PetscReal (*zone_gap)(const void *data, PetscReal dgamma);
+  PetscReal (*peak)(const void *data, PetscReal dgamma);
 } AdhCriterionOps;
+
+/* The energy minimisation of a step under a cohesive law (interface/minimize.c): its options, in
+   the law's -help group, and its data (made at the first step). */
+typedef struct _n_AdhMinimizer *AdhMinimizer;
+PETSC_INTERN PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver, PetscOptionItems *);
+PETSC_INTERN PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver, PetscViewer);
+PETSC_INTERN PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver);
 
 /* What a contact-set predictor does (impls/predictor/): guess a step's set and pressure without
    adhesion, at an indentation or carrying a force (force true); NULL predict: no guess. */
@@ -179,6 +195,11 @@ struct _p_AdhSolver {
   /* detachment criterion (impls/criterion/) */
   char            criterion_type[64];
   AdhCriterionOps crops;
+  AdhMinimizer    minimizer;        /* a cohesive law's energy minimisation (NULL: none yet) */
+  PetscReal       minimize_rtol;    /* -adh_minimize_rtol: it stops at this relative projected gradient */
+  PetscInt        minimize_max_it;  /* -adh_minimize_max_it */
+  PetscBool       minimize_pc;      /* -adh_minimize_pc fourier: the compliance preconditions it */
+  PetscBool       minimize_monitor; /* -adh_minimize_monitor: a line per iteration */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
 
@@ -374,6 +395,9 @@ PETSC_INTERN PetscErrorCode AdhSolverAttach_Private(AdhSolver, Vec rate, PetscRe
 /* The set-update loop of a step at the target, from the current set: solve (the control's
    equilibrate), let go, let join, until the set stands or no equilibrium is left (setupdate.c). */
 PETSC_INTERN PetscErrorCode AdhSolverUpdateSet_Private(AdhSolver, PetscReal target);
+/* A step's state under a cohesive law: the minimum of the total energy at the target reached from
+   the current state, or *none: no minimum is left under a force (the bodies fly apart). */
+PETSC_INTERN PetscErrorCode AdhSolverMinimize_Private(AdhSolver, PetscReal target, PetscBool *none);
 /* The options of every registered type, read on a scratch solver: -help shows those of the types
    the solver does not have, and set-up does not take any for misspellings (types.c). */
 PETSC_INTERN PetscErrorCode AdhSolverReadTypesOptions_Private(AdhSolver);

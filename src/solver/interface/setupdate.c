@@ -10,6 +10,11 @@ PetscErrorCode AdhSolverUpdateSet_Private(AdhSolver s, PetscReal target)
   PetscBool   loose = (PetscBool)(s->cascade_rtol > 0); /* -adh_cascade_rtol: the next solve may stop early */
 
   PetscFunctionBegin;
+  if (s->crops.law) { /* a cohesive law: the energy's minimum, no set updates */
+    PetscBool none;
+    PetscCall(AdhSolverMinimize_Private(s, target, &none));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt outer = 1;; outer++) {
     PetscInt  removed, added, widened;
     PetscBool none;

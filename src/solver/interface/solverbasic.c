@@ -57,6 +57,9 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->stop_at_pulloff = PETSC_TRUE;
   s->path_stopped    = -1;
   s->max_outer = 100000;
+  s->minimize_rtol   = 1e-8;
+  s->minimize_max_it = 100000;
+  s->minimize_pc     = PETSC_TRUE;
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;

@@ -175,7 +175,7 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
 PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
 {
   const PetscReal    A = s->grid->hx * s->grid->hy;
-  const PetscScalar *pa, *sa;
+  const PetscScalar *pa, *sa, *ga, *gamma = NULL;
   PetscScalar        gsum;
   PetscReal          ratio = 0.0, su, zone[2] = {0.0, 0.0};
   PetscInt           k, count[2] = {0, 0};
@@ -185,12 +185,15 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscCall(VecSum(s->g, &gsum));
   st->mean_gap = PetscRealPart(gsum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   PetscCall(VecGetArrayRead(s->p, &pa));
+  PetscCall(VecGetArrayRead(s->g, &ga));
+  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
   PetscCall(AdhSolverGetCriticalStress_Private(s, PETSC_FALSE, &sa, &su));
   for (k = 0; k < s->nlocal; k++) {
     const PetscReal p = PetscRealPart(pa[k]), Sigma = ADH_SIGMA_AT(sa, su, k);
-    if (!s->in_set[k]) { /* a traction off the set: a cohesive zone's */
+    if (!s->in_set[k]) { /* a traction off the set: a cohesive zone's (a law's: within its zone gap) */
       if (p != 0) {
-        zone[0] += A;
+        const PetscReal dgamma = gamma ? PetscRealPart(gamma[k]) : s->gamma;
+        if (!s->crops.zone_gap || PetscRealPart(ga[k]) <= s->crops.zone_gap(s->crops.data, dgamma)) zone[0] += A;
         zone[1] += p * A;
       }
       continue;
@@ -200,6 +203,8 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
     if (p < 0 && Sigma > 0) ratio = PetscMax(ratio, -p / Sigma);
   }
   PetscCall(AdhSolverRestoreCriticalStress_Private(s, &sa));
+  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+  PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(VecRestoreArrayRead(s->p, &pa));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 2, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));

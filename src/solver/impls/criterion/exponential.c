@@ -1,0 +1,186 @@
+/*MC
+   ADHCRITERIONEXPONENTIAL - "exponential": finite-range adhesion, an exponential attraction behind a hard wall: at gap
+   g >= 0 the surfaces attract with the tension (dgamma/rho) exp(-g/rho), the potential -dgamma exp(-g/rho)
+
+   The work of separation is dgamma, the largest tension dgamma/rho (at contact), and rho the range. It is the law of
+   the contact-mechanics challenge (Muser et al. 2017) and of the peers' adhesion functionals. A step minimises the
+   total energy, the elastic energy plus the law's potential over the gaps with the wall g >= 0 as a bound, from the
+   last state: the quasi-static branch is followed, with its jumps into and out of contact where a minimum disappears.
+
+   Options Database Keys:
++  -adh_criterion exponential        - selects this law
+.  -adh_exponential_range <rho>      - the range rho (required, > 0)
+.  -adh_minimize_rtol <1e-8>         - a step stops at this relative projected gradient of the energy
+.  -adh_minimize_max_it <100000>     - the largest number of iterations in a step
+-  -adh_minimize_pc <fourier,none>   - the preconditioner of the minimisation
+
+   Level: intermediate
+
+   Notes:
+   The answer converges with the grid once the range spans a grid spacing or more and the cohesive zone several. For a
+   sphere of radius R Tabor's parameter mu = (R dgamma^2 / (E*^2 rho^3))^(1/3) goes from DMT (mu -> 0, pull-off
+   2 pi dgamma R) to JKR (mu -> infinity, 1.5 pi dgamma R); -adh_view prints it for a sphere. The cohesive zone (the
+   cohesive area and force of the curve, and the zone's width) counts the points off the contact whose gap is at most
+   rho ln 10, where the tension is at least a tenth of the largest. With a work of adhesion field dgamma(x, y) the
+   tension follows it at a common range.
+
+   Needs -adh_boundary periodic. -adh_critical_stress, -adh_attach, -adh_cascade_apart and -adh_cascade_local do not
+   apply: the hard wall is the bound of the minimisation.
+
+.seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONDUGDALE`, `ADHCRITERIONCRACKCLOSURE`
+M*/
+#include "solver/solverimpl.h"
+
+typedef struct {
+  PetscReal rho; /* -adh_exponential_range */
+} Exponential;
+
+static void Law_Exponential(const void *data, PetscReal dgamma, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi)
+{
+  const PetscReal rho = ((const Exponential *)data)->rho, e = PetscExpReal(-g / rho);
+
+  *phi   = -dgamma * e;
+  *dphi  = dgamma / rho * e;
+  *ddphi = -dgamma / (rho * rho) * e;
+}
+
+static PetscReal ZoneGap_Exponential(const void *data, PetscReal dgamma)
+{
+  return ((const Exponential *)data)->rho * PetscLogReal(10.0);
+}
+
+static PetscReal Peak_Exponential(const void *data, PetscReal dgamma)
+{
+  return dgamma / ((const Exponential *)data)->rho;
+}
+
+/* Without detach: the largest tension on the contact over the law's largest (at most 1 in an
+   equilibrium). It never lets points go itself: the minimisation does. */
+static PetscErrorCode Evaluate_Exponential(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
+{
+  Exponential       *ex = (Exponential *)s->crops.data;
+  const PetscScalar *pa, *gamma = NULL;
+  PetscReal          r = 0.0;
+
+  PetscFunctionBegin;
+  PetscCheck(!detach, s->comm, PETSC_ERR_PLIB, "A cohesive law's steps minimise the energy: no detach test");
+  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
+  PetscCall(VecGetArrayRead(s->p, &pa));
+  for (PetscInt k = 0; k < s->nlocal; k++) {
+    const PetscReal dgamma = s->adhesive ? (gamma ? PetscRealPart(gamma[k]) : s->gamma) : 0.0, p = PetscRealPart(pa[k]);
+    if (!s->in_set[k] || p >= 0) continue;
+    r = dgamma > 0 ? PetscMax(r, -p * ex->rho / dgamma) : PETSC_MAX_REAL;
+  }
+  PetscCall(VecRestoreArrayRead(s->p, &pa));
+  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+  PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
+  if (removed) *removed = 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Exponential(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+{
+  Exponential *ex = (Exponential *)s->crops.data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsReal("-adh_exponential_range", "exponential: the range rho of the attraction (dgamma/rho) exp(-g/rho) at gap g (required with -adh_criterion exponential)", "ADHCRITERIONEXPONENTIAL", ex->rho, &ex->rho, NULL));
+  PetscCheck(ex->rho == 0 || (ex->rho > 0 && !PetscIsInfOrNanReal(ex->rho)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_exponential_range must be > 0 and finite, got %g", (double)ex->rho);
+  PetscCall(AdhSolverMinimizeSetFromOptions_Private(s, PetscOptionsObject));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUp_Exponential(AdhSolver s)
+{
+  Exponential *ex = (Exponential *)s->crops.data;
+
+  PetscFunctionBegin;
+  PetscCheck(ex->rho > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion exponential needs the range: give -adh_exponential_range RHO (> 0)");
+  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion exponential needs -adh_boundary periodic");
+  PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion exponential, whose largest tension is dgamma/rho");
+  PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion exponential: the hard wall is the bound of its energy minimisation");
+  PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion exponential");
+  PetscCheck(!(s->cascade_local > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local does not apply to -adh_criterion exponential");
+  PetscFunctionReturn(0);
+}
+
+/* Tabor's parameter of a sphere of radius R: (R dgamma^2 / (E*^2 rho^3))^(1/3). */
+static PetscReal Tabor(AdhSolver s, PetscReal rho)
+{
+  return PetscCbrtReal(s->indenter.radius * s->gamma * s->gamma / (s->Estar * s->Estar * rho * rho * rho));
+}
+
+/* Its lines of -adh_view, and its attributes in the results file. */
+static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
+{
+  Exponential *ex = (Exponential *)s->crops.data;
+  PetscBool    isascii, ishdf5, sphere = (PetscBool)(s->indenter.type == ADH_INDENTER_SPHERE && s->gamma > 0 && ex->rho > 0 && !s->gamma_field);
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERHDF5, &ishdf5));
+  if (isascii) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "range rho = %g (%g grid spacings), largest tension dgamma/rho = %g\n", (double)ex->rho, (double)(s->grid->hx > 0 ? ex->rho / PetscMin(s->grid->hx, s->grid->hy) : 0), (double)(ex->rho > 0 ? s->gamma / ex->rho : 0)));
+    if (sphere) PetscCall(PetscViewerASCIIPrintf(viewer, "Tabor's mu of the sphere %g (JKR: large, DMT: small)\n", (double)Tabor(s, ex->rho)));
+    PetscCall(AdhSolverMinimizeView_Private(s, viewer));
+  }
+  if (ishdf5) {
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "exponential_range", PETSC_REAL, &ex->rho));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_rtol", PETSC_REAL, &s->minimize_rtol));
+    if (sphere) {
+      PetscReal mu = Tabor(s, ex->rho);
+      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "tabor_mu", PETSC_REAL, &mu));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The minimisation's vectors: nine grid vectors and a byte a point. */
+static PetscErrorCode Memory_Exponential(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
+{
+  PetscFunctionBegin;
+  *per_point = 9.0 * sizeof(PetscScalar) + 1.0;
+  *per_rank  = 0.0;
+  PetscFunctionReturn(0);
+}
+
+/* The range and the minimisation's tolerance shape the answer: a restart repeats them. */
+static PetscErrorCode Shape_Exponential(AdhSolver s, PetscInt *n, AdhShapingOption shape[])
+{
+  Exponential *ex = (Exponential *)s->crops.data;
+
+  PetscFunctionBegin;
+  shape[0] = (AdhShapingOption){"-adh_exponential_range", PETSC_REAL, &ex->rho};
+  shape[1] = (AdhShapingOption){"-adh_minimize_rtol", PETSC_REAL, &s->minimize_rtol};
+  *n       = 2;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_Exponential(AdhSolver s)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhSolverMinimizeDestroy_Private(s));
+  PetscCall(PetscFree(s->crops.data));
+  PetscFunctionReturn(0);
+}
+
+PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
+{
+  Exponential *ex;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&ex));
+  s->crops.data                = ex;
+  s->crops.attach              = ADH_ATTACH_PENETRATION;
+  s->crops.cohesive            = PETSC_TRUE;
+  s->crops.evaluate            = Evaluate_Exponential;
+  s->crops.law                 = Law_Exponential;
+  s->crops.zone_gap            = ZoneGap_Exponential;
+  s->crops.peak                = Peak_Exponential;
+  s->crops.base.setfromoptions = SetFromOptions_Exponential;
+  s->crops.base.view           = View_Exponential;
+  s->crops.base.setup          = SetUp_Exponential;
+  s->crops.base.shape          = Shape_Exponential;
+  s->crops.base.memory         = Memory_Exponential;
+  s->crops.base.destroy        = Destroy_Exponential;
+  PetscFunctionReturn(0);
+}

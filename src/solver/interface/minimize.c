@@ -1,0 +1,593 @@
+/* A step under a cohesive law (a criterion with a law op: impls/criterion/exponential.c, ...): the
+   minimum of the total energy, elastic energy plus the law's potential over the gaps, with the hard
+   wall g >= 0 as a bound, reached from the current state so that the quasi-static branch is
+   followed. A projected nonlinear conjugate gradient in the gap variables (Polonsky and Keer 1999,
+   with the adhesive functional of Rey, Anciaux and Molinari 2017): on the free points (gap > 0, or
+   at 0 and pulled away) the direction is the energy's gradient, preconditioned with the compliance,
+   conjugated with Polak-Ribiere; the step length minimises the energy along the direction (the
+   elastic part is quadratic, one stiffness multiply gives it; the law's part is pointwise); the
+   step is projected back onto the bound (and the mean gap under displacement control). Why not
+   TAO: docs/theory/minimisation.md.
+
+   The variables: the gap on the periodic cell. The elastic displacement is u = g - (h - d), the
+   elastic pressure S u (S, the stiffness, applied to mean-free vectors: a periodic cell has no
+   mean displacement), and the gradient of the energy per element area at a point is
+   r = S u + phi'(g) + pbar, with pbar the mean pressure under force control. Under displacement
+   control the mean gap is mean(h) - d, a constraint whose multiplier is the mean pressure. */
+#include "solver/solverimpl.h"
+
+/* Under a force, every gap beyond this many zone gaps: the attraction is gone (exp(-69) of its
+   peak for the exponential law) and the energy falls without bound, no minimum. */
+#define ADH_RUNAWAY 30.0
+/* A step is halved at most this often before the direction is given up. */
+#define ADH_MAX_HALVINGS 10
+/* A move of a gap below this share of the zone gap is short: the law's energy change is integrated. */
+#define ADH_SHORT_MOVE 1e-2
+
+struct _n_AdhMinimizer {
+  Vec      v, b;        /* the gaps, and h - d: u = v - b */
+  Vec      pel, q;      /* the elastic pressure S u, and S t */
+  Vec      r, rp, z, t; /* the gradient, its projection on the free points, the preconditioned one, the direction */
+  Vec      work, pold; /* scratch, and the elastic pressure before a step */
+  char    *active;      /* the points held at the wall (gap 0, pushed into it) */
+  PetscInt n;           /* local points */
+  PetscInt its_total;   /* iterations over the run, for the view */
+  PetscInt states;
+};
+
+PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+{
+  static const char *const pcs[] = {"none", "fourier", "AdhMinimizePC", "", NULL};
+  PetscInt                 pc    = s->minimize_pc ? 1 : 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsReal("-adh_minimize_rtol", "A cohesive law's step stops when the projected gradient of the energy, a pressure, is this small relative to the pressure field", "AdhSolver", s->minimize_rtol, &s->minimize_rtol, NULL));
+  PetscCheck(s->minimize_rtol > 0 && s->minimize_rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_minimize_rtol must lie in (0, 1), got %g", (double)s->minimize_rtol);
+  PetscCall(PetscOptionsInt("-adh_minimize_max_it", "The largest number of iterations of a cohesive law's energy minimisation in one step", "AdhSolver", s->minimize_max_it, &s->minimize_max_it, NULL));
+  PetscCheck(s->minimize_max_it > 0, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_minimize_max_it must be positive, got %" PetscInt_FMT, s->minimize_max_it);
+  PetscCall(PetscOptionsBool("-adh_minimize_monitor", "Print a line per iteration of a cohesive law's energy minimisation (as -ksp_monitor)", "AdhSolver", s->minimize_monitor, &s->minimize_monitor, NULL));
+  PetscCall(PetscOptionsEList("-adh_minimize_pc", "The preconditioner of a cohesive law's minimisation: the compliance on the free points (fourier) or none", "AdhSolver", pcs, 2, pcs[pc], &pc, NULL));
+  s->minimize_pc = (PetscBool)(pc == 1);
+  PetscFunctionReturn(0);
+}
+
+/* Its lines in the law's -adh_view. */
+PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver s, PetscViewer viewer)
+{
+  PetscBool isascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (isascii) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy: projected conjugate gradient in the gaps, preconditioner %s, to a relative projected gradient %g\n", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
+    if (s->minimizer && s->minimizer->states) PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " iterations over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->states));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
+{
+  AdhMinimizer m = s->minimizer;
+
+  PetscFunctionBegin;
+  if (!m) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&m->v));
+  PetscCall(VecDestroy(&m->b));
+  PetscCall(VecDestroy(&m->pel));
+  PetscCall(VecDestroy(&m->q));
+  PetscCall(VecDestroy(&m->r));
+  PetscCall(VecDestroy(&m->rp));
+  PetscCall(VecDestroy(&m->z));
+  PetscCall(VecDestroy(&m->t));
+  PetscCall(VecDestroy(&m->work));
+  PetscCall(VecDestroy(&m->pold));
+  PetscCall(PetscFree(m->active));
+  PetscCall(PetscFree(s->minimizer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Create(AdhSolver s)
+{
+  AdhMinimizer m;
+
+  PetscFunctionBegin;
+  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_SUP, "-adh_criterion %s: a cohesive law needs -adh_boundary periodic", s->criterion_type);
+  PetscCall(PetscNew(&m));
+  PetscCall(VecDuplicate(s->h, &m->v));
+  PetscCall(VecDuplicate(s->h, &m->b));
+  PetscCall(VecDuplicate(s->h, &m->pel));
+  PetscCall(VecDuplicate(s->h, &m->q));
+  PetscCall(VecDuplicate(s->h, &m->r));
+  PetscCall(VecDuplicate(s->h, &m->rp));
+  PetscCall(VecDuplicate(s->h, &m->z));
+  PetscCall(VecDuplicate(s->h, &m->t));
+  PetscCall(VecDuplicate(s->h, &m->work));
+  PetscCall(VecDuplicate(s->h, &m->pold));
+  PetscCall(PetscMalloc1(s->nlocal + 1, &m->active));
+  m->n         = s->nlocal;
+  s->minimizer = m;
+  PetscFunctionReturn(0);
+}
+
+/* y = S x on the mean-free part of x (the stiffness's mean mode is a preconditioner's value, not
+   the cell's: it has none), or with compliance the compliance K x (mean mode zero). */
+static PetscErrorCode ApplyMeanFree(AdhSolver s, Mat A, Vec x, Vec y)
+{
+  AdhMinimizer m = s->minimizer;
+  PetscScalar  sum;
+
+  PetscFunctionBegin;
+  PetscCall(VecSum(x, &sum));
+  PetscCall(VecCopy(x, m->work));
+  PetscCall(VecShift(m->work, -sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
+  PetscCall(MatMult(A, m->work, y));
+  PetscFunctionReturn(0);
+}
+
+/* z = K r, with under a force the compliance of the longest wave, 2/(E* q_min), on the mean
+   mode (the cell's has none; there the mean gap is free, and it needs the step a wave of the
+   cell's size would take). */
+static PetscErrorCode Precondition(AdhSolver s, PetscBool force, Vec r, Vec z)
+{
+  PetscScalar sum;
+
+  PetscFunctionBegin;
+  PetscCall(VecSum(r, &sum));
+  PetscCall(ApplyMeanFree(s, s->K, r, z));
+  if (force) PetscCall(VecShift(z, 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly)) * sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
+  PetscFunctionReturn(0);
+}
+
+/* The work of adhesion of local point k, 0 on a non-adhesive stage. */
+static inline PetscReal Dgamma(AdhSolver s, const PetscScalar *gamma, PetscInt k)
+{
+  if (!s->adhesive) return 0.0;
+  return gamma ? PetscRealPart(gamma[k]) : s->gamma;
+}
+
+/* The law at local point k and gap g: potential, attraction and its derivative (none without adhesion). */
+static inline void Law(AdhSolver s, const PetscScalar *gamma, PetscInt k, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi)
+{
+  const PetscReal dg = Dgamma(s, gamma, k);
+
+  if (dg > 0) s->crops.law(s->crops.data, dg, g, phi, dphi, ddphi);
+  else *phi = *dphi = *ddphi = 0.0;
+}
+
+/* The elastic pressure of the gaps, pel = S (v - b), exactly. */
+static PetscErrorCode ElasticPressure(AdhSolver s)
+{
+  AdhMinimizer m = s->minimizer;
+
+  PetscFunctionBegin;
+  PetscCall(VecWAXPY(m->q, -1.0, m->b, m->v));
+  PetscCall(ApplyMeanFree(s, s->S, m->q, m->pel));
+  PetscFunctionReturn(0);
+}
+
+/* The gradient of the energy per element area, r = pel + phi'(v) + pbar. */
+static PetscErrorCode Gradient(AdhSolver s, const PetscScalar *gamma, PetscReal pbar)
+{
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va, *pa;
+  PetscScalar       *ra;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayRead(m->pel, &pa));
+  PetscCall(VecGetArrayWrite(m->r, &ra));
+  for (PetscInt k = 0; k < m->n; k++) {
+    PetscReal phi, dphi, ddphi;
+    Law(s, gamma, k, PetscRealPart(va[k]), &phi, &dphi, &ddphi);
+    ra[k] = pa[k] + dphi + pbar;
+  }
+  PetscCall(VecRestoreArrayWrite(m->r, &ra));
+  PetscCall(VecRestoreArrayRead(m->pel, &pa));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscFunctionReturn(0);
+}
+
+/* The change of the energy per element area from the gaps z (elastic pressure pold) to v (pel),
+   from the differences: (v - z).(pold + pel)/2 + sum (phi(v) - phi(z)) + pbar sum (v - z). The
+   elastic part is exact for a quadratic energy; the totals would have no digits left for it near
+   the minimum. */
+static PetscErrorCode EnergyChange(AdhSolver s, const PetscScalar *gamma, PetscReal pbar, PetscReal *dE)
+{
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va, *za, *pa, *oa;
+  const PetscReal    range = s->crops.zone_gap ? s->crops.zone_gap(s->crops.data, s->gamma) : 0.0;
+  PetscReal          e = 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayRead(m->z, &za));
+  PetscCall(VecGetArrayRead(m->pel, &pa));
+  PetscCall(VecGetArrayRead(m->pold, &oa));
+  for (PetscInt k = 0; k < m->n; k++) {
+    const PetscReal v = PetscRealPart(va[k]), z = PetscRealPart(za[k]), dv = v - z;
+    PetscReal       phiv, phiz, dv_, dz, ddv, ddz, dphi;
+    if (dv == 0) continue;
+    Law(s, gamma, k, v, &phiv, &dv_, &ddv);
+    Law(s, gamma, k, z, &phiz, &dz, &ddz);
+    /* the law's change: over a short move the integral of phi' by the corrected trapezoid
+       (Euler-Maclaurin, error dv^5 phi''''''/720), whose digits are the change's own; the
+       difference of the potentials, which loses them, over a long one */
+    if (PetscAbsReal(dv) < ADH_SHORT_MOVE * range) dphi = 0.5 * dv * (dz + dv_) - dv * dv / 12.0 * (ddv - ddz);
+    else dphi = phiv - phiz;
+    e += 0.5 * dv * PetscRealPart(pa[k] + oa[k]) + dphi + pbar * dv;
+  }
+  PetscCall(VecRestoreArrayRead(m->pold, &oa));
+  PetscCall(VecRestoreArrayRead(m->pel, &pa));
+  PetscCall(VecRestoreArrayRead(m->z, &za));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscCall(MPIU_Allreduce(&e, dE, 1, MPIU_REAL, MPIU_SUM, s->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The points held at the wall (gap 0 and the gradient, less the mean-gap multiplier mu, pushing
+   into it), the multiplier over the other points (fixmean; 0 otherwise), and the projection rp of
+   the gradient on the free points (with fixmean, mean-free over them); *changed counts the points
+   whose status changed. */
+static PetscErrorCode Project(AdhSolver s, PetscBool fixmean, PetscReal *mu, PetscInt *changed)
+{
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va, *ra;
+  PetscScalar       *pa;
+  PetscReal          sums[2];
+  PetscInt           ch = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayRead(m->r, &ra));
+  *mu = 0.0;
+  if (fixmean) { /* the multiplier over the points off the wall first, then over every free point */
+    for (PetscInt pass = 0; pass < 2; pass++) {
+      sums[0] = sums[1] = 0.0;
+      for (PetscInt k = 0; k < m->n; k++) {
+        const PetscBool held = (PetscBool)(PetscRealPart(va[k]) <= 0 && (pass == 0 || PetscRealPart(ra[k]) - *mu >= 0));
+        if (held) continue;
+        sums[0] += PetscRealPart(ra[k]);
+        sums[1] += 1.0;
+      }
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, s->comm));
+      *mu = sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+    }
+  }
+  PetscCall(VecGetArrayWrite(m->rp, &pa));
+  for (PetscInt k = 0; k < m->n; k++) {
+    const char held = (char)(PetscRealPart(va[k]) <= 0 && PetscRealPart(ra[k]) - *mu >= 0);
+    if (held != m->active[k]) ch++;
+    m->active[k] = held;
+    pa[k]        = held ? 0.0 : ra[k] - *mu;
+  }
+  PetscCall(VecRestoreArrayWrite(m->rp, &pa));
+  PetscCall(VecRestoreArrayRead(m->r, &ra));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscCall(MPIU_Allreduce(&ch, changed, 1, MPIU_INT, MPI_SUM, s->comm));
+  PetscFunctionReturn(0);
+}
+
+/* x = 0 at the held points, and with fixmean mean-free over the others. */
+static PetscErrorCode RestrictToFree(AdhSolver s, PetscBool fixmean, Vec x)
+{
+  AdhMinimizer m = s->minimizer;
+  PetscScalar *xa;
+  PetscReal    sums[2] = {0.0, 0.0}, mean;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt k = 0; k < m->n; k++) {
+    if (m->active[k]) xa[k] = 0.0;
+    else {
+      sums[0] += PetscRealPart(xa[k]);
+      sums[1] += 1.0;
+    }
+  }
+  if (fixmean) {
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, s->comm));
+    mean = sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+    for (PetscInt k = 0; k < m->n; k++)
+      if (!m->active[k]) xa[k] -= mean;
+  }
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* A direction that moves no point into the wall: t = 0 at the points at the wall it pushes into
+   it (a preconditioned direction may, at a point the gradient pulls away), and with fixmean t
+   mean-free again by a shift of the points off the wall. */
+static PetscErrorCode KeepOffWall(AdhSolver s, PetscBool fixmean, Vec t)
+{
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va;
+  PetscScalar       *ta;
+  PetscReal          sums[2] = {0.0, 0.0}, shift;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArray(t, &ta));
+  for (PetscInt k = 0; k < m->n; k++) {
+    if (PetscRealPart(va[k]) <= 0 && PetscRealPart(ta[k]) < 0) ta[k] = 0.0;
+    sums[0] += PetscRealPart(ta[k]);
+    if (PetscRealPart(va[k]) > 0) sums[1] += 1.0;
+  }
+  if (fixmean) {
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, s->comm));
+    shift = sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+    for (PetscInt k = 0; k < m->n; k++)
+      if (PetscRealPart(va[k]) > 0) ta[k] -= shift;
+  }
+  PetscCall(VecRestoreArray(t, &ta));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscFunctionReturn(0);
+}
+
+/* The slope and curvature along t at step a of the energy's model: the elastic part exact,
+   a (t.pel) + a^2 (t.q)/2, the law's at the gaps v + a t (continued linearly below the wall). */
+static PetscErrorCode Slope(AdhSolver s, const PetscScalar *gamma, const PetscReal tr0, const PetscReal tq, PetscReal a, const PetscScalar *va, const PetscScalar *ta, PetscReal *slope, PetscReal *curv)
+{
+  AdhMinimizer m = s->minimizer;
+  PetscReal    sc[2] = {0.0, 0.0};
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < m->n; k++) {
+    const PetscReal t = PetscRealPart(ta[k]), v = PetscRealPart(va[k]);
+    PetscReal       phi, dphi0, ddphi0, dphi, ddphi, x;
+    if (t == 0) continue;
+    x = v + a * t;
+    Law(s, gamma, k, v, &phi, &dphi0, &ddphi0);
+    /* below the wall the law goes on linearly: the projection puts the point at the wall, where
+       it holds the law's largest attraction (not none) */
+    Law(s, gamma, k, PetscMax(x, 0.0), &phi, &dphi, &ddphi);
+    if (x < 0) ddphi = 0.0;
+    sc[0] += t * (dphi - dphi0); /* tr0 holds t.(pel + phi'(v) + pbar) */
+    sc[1] += t * t * ddphi;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sc, 2, MPIU_REAL, MPIU_SUM, s->comm));
+  *slope = tr0 + a * tq + sc[0];
+  *curv  = tq + sc[1];
+  PetscFunctionReturn(0);
+}
+
+/* The step along t: the first minimum of the model along it, bracketed from the Newton step and
+   found by regula falsi (Illinois) on the slope, to a tenth of the slope at 0. */
+static PetscErrorCode LineSearch(AdhSolver s, const PetscScalar *gamma, PetscReal tr0, PetscReal tq, PetscReal *alpha)
+{
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va, *ta;
+  PetscReal          a = 0.0, fa = tr0, b, fb, c0, curv, x, fx;
+  PetscInt           side = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayRead(m->t, &ta));
+  PetscCall(Slope(s, gamma, tr0, tq, 0.0, va, ta, &fa, &c0));
+  b = -tr0 / (c0 > 0 ? c0 : tq);
+  PetscCall(Slope(s, gamma, tr0, tq, b, va, ta, &fb, &curv));
+  for (PetscInt k = 0; fb < 0 && k < 60; k++) { /* still going down: further */
+    a  = b;
+    fa = fb;
+    b *= 2.0;
+    PetscCall(Slope(s, gamma, tr0, tq, b, va, ta, &fb, &curv));
+  }
+  x = b;
+  if (fb > 0 && PetscAbsReal(fb) > 0.1 * PetscAbsReal(tr0)) {
+    for (PetscInt k = 0; k < 60; k++) {
+      x = (a * fb - b * fa) / (fb - fa);
+      PetscCall(Slope(s, gamma, tr0, tq, x, va, ta, &fx, &curv));
+      if (PetscAbsReal(fx) <= 0.1 * PetscAbsReal(tr0)) break;
+      if (fx < 0) {
+        a  = x;
+        fa = fx;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        b  = x;
+        fb = fx;
+        if (side == 1) fa *= 0.5;
+        side = 1;
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(m->t, &ta));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  *alpha = x;
+  PetscFunctionReturn(0);
+}
+
+/* v = the projection of y onto the gaps allowed: max(y, 0), and with fixmean the mean gap mean
+   too (max(y - tau, 0), tau by Michelot's finite iteration); *clamped: some point was held at 0
+   or shifted unevenly (the elastic pressure must be computed again). */
+static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal mean, Vec y, PetscBool *clamped)
+{
+  AdhMinimizer m = s->minimizer;
+  PetscScalar *ya;
+  PetscReal    tau = 0.0, N = (PetscReal)s->grid->Nx * s->grid->Ny;
+  PetscInt     neg = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt k = 0; k < m->n; k++)
+    if (PetscRealPart(ya[k]) < 0) neg++;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &neg, 1, MPIU_INT, MPI_SUM, s->comm));
+  /* with nothing below the wall the mean is right (the directions are mean-free): a shift by
+     the rounding would lift the points at the wall off it */
+  if (fixmean && neg) {
+    PetscReal in = -1;
+    for (PetscInt it = 0; it < 200; it++) {
+      PetscReal sums[2] = {0.0, 0.0};
+      for (PetscInt k = 0; k < m->n; k++)
+        if (it == 0 || PetscRealPart(ya[k]) > tau) {
+          sums[0] += PetscRealPart(ya[k]);
+          sums[1] += 1.0;
+        }
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, s->comm));
+      tau = (sums[0] - N * mean) / sums[1];
+      if (sums[1] == in) break;
+      in = sums[1];
+    }
+  }
+  if (neg)
+    for (PetscInt k = 0; k < m->n; k++) {
+      const PetscReal x = PetscRealPart(ya[k]) - tau;
+      ya[k]             = x > 0 ? x : 0.0;
+    }
+  PetscCall(VecRestoreArray(y, &ya));
+  *clamped = (PetscBool)(neg > 0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBool *none)
+{
+  const PetscBool    force   = AdhSolverControlsForce_Private(s);
+  const PetscBool    fixmean = (PetscBool)!force;
+  const PetscReal    N = (PetscReal)s->grid->Nx * s->grid->Ny, cell = s->grid->Lx * s->grid->Ly;
+  const PetscReal    pbar = force ? target / cell : 0.0;
+  const PetscScalar *gamma = NULL;
+  AdhMinimizer       m;
+  PetscScalar        sum;
+  PetscReal          mu = 0.0, mean = s->mean_h - target, zrp_old = 0.0, rel = 1.0, scale;
+  PetscInt           it, changed, since_exact = 0, restarts = 0, stalls = 0;
+  PetscBool          clamped, restart = PETSC_TRUE, steepest = PETSC_FALSE, down = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  *none = PETSC_FALSE;
+  if (!s->minimizer) PetscCall(Create(s));
+  m = s->minimizer;
+  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
+  /* from the last state's gaps (of its pressure: a force control's trial may have gone back to it),
+     moved rigidly by the change of d (or as they are under a force) */
+  PetscCall(AdhSolverComputeGap_Private(s));
+  PetscCall(VecCopy(s->g, m->v));
+  if (!force) PetscCall(VecShift(m->v, s->d - target));
+  PetscCall(ProjectOntoBound(s, fixmean, mean, m->v, &clamped));
+  if (!force) s->d = target;
+  PetscCall(VecCopy(s->h, m->b));
+  PetscCall(VecShift(m->b, -s->d)); /* under a force d is the output: u = v - b is mean-free either way */
+  PetscCall(PetscArrayzero(m->active, m->n));
+  PetscCall(ElasticPressure(s));
+  PetscCall(Gradient(s, gamma, pbar));
+  scale = 0.0;
+  if (s->crops.peak && s->adhesive && s->gamma > 0) scale = s->crops.peak(s->crops.data, s->gamma);
+  for (it = 0;; it++) {
+    PetscReal rpn, pn, tr0, tq, alpha, zrp, beta = 0.0;
+    PetscInt  restarts0;
+    PetscScalar dot;
+
+    AdhSolverCheckStop_Private(s);
+    PetscCall(Project(s, fixmean, &mu, &changed));
+    /* the measure: the projected gradient against the pressure field (elastic plus mean) */
+    PetscCall(VecNorm(m->rp, NORM_2, &rpn));
+    PetscCall(VecCopy(m->pel, m->work));
+    PetscCall(VecShift(m->work, force ? pbar : -mu));
+    PetscCall(VecNorm(m->work, NORM_2, &pn));
+    pn  = PetscMax(pn, 1e-12 * PetscSqrtReal(N) * scale);
+    rel = pn > 0 ? rpn / pn : 0.0;
+    if (rel <= s->minimize_rtol) {
+      if (since_exact == 0) break;
+      PetscCall(ElasticPressure(s)); /* the updated pressure has drifted: confirm on an exact one */
+      PetscCall(Gradient(s, gamma, pbar));
+      since_exact = 0;
+      continue;
+    }
+    if (force && s->crops.zone_gap) { /* no minimum under this force: the bodies fly apart */
+      PetscReal vmin;
+      PetscCall(VecMin(m->v, NULL, &vmin));
+      if (vmin > ADH_RUNAWAY * s->crops.zone_gap(s->crops.data, s->gamma)) {
+        *none = PETSC_TRUE;
+        break;
+      }
+    }
+    PetscCheck(it < s->minimize_max_it, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stopped at %" PetscInt_FMT " iterations (-adh_minimize_max_it) with a relative projected gradient %g (-adh_minimize_rtol %g)", force ? "the force" : "d =", (double)target, it, (double)rel, (double)s->minimize_rtol);
+    /* the direction: preconditioned projected gradient, conjugated unless the held points changed */
+    if (s->minimize_pc && !steepest) {
+      PetscCall(Precondition(s, force, m->rp, m->z));
+      PetscCall(RestrictToFree(s, fixmean, m->z));
+    } else PetscCall(VecCopy(m->rp, m->z));
+    PetscCall(VecDot(m->z, m->rp, &dot));
+    zrp = PetscRealPart(dot);
+    if (changed || restart) beta = 0.0;
+    else {
+      PetscCall(VecDot(m->z, m->q, &dot)); /* q holds the previous projected gradient here */
+      beta = PetscMax(0.0, (zrp - PetscRealPart(dot)) / zrp_old);
+    }
+    if (beta > 0) PetscCall(VecAYPX(m->t, beta, m->z));
+    else PetscCall(VecCopy(m->z, m->t));
+    PetscCall(VecScale(m->t, -1.0));
+    if (beta > 0) PetscCall(RestrictToFree(s, fixmean, m->t));
+    PetscCall(KeepOffWall(s, fixmean, m->t));
+    PetscCall(VecDot(m->t, m->r, &dot));
+    tr0       = PetscRealPart(dot);
+    restarts0 = restarts;
+    if (!(tr0 < 0)) { /* not downhill: the steepest descent, which pulls every free point at the wall away */
+      PetscCall(VecAXPBY(m->t, -1.0, 0.0, m->rp));
+      PetscCall(VecDot(m->t, m->r, &dot));
+      tr0 = PetscRealPart(dot);
+      restarts++;
+    }
+    zrp_old = zrp;
+    down = (PetscBool)(((steepest || !s->minimize_pc) && beta == 0) || restarts > restarts0); /* down the gradient: a stall now is the end */
+    restart  = PETSC_FALSE;
+    steepest = PETSC_FALSE;
+    /* the step: the elastic part along t is quadratic, S t gives it */
+    PetscCall(ApplyMeanFree(s, s->S, m->t, m->q));
+    PetscCall(VecDot(m->t, m->q, &dot));
+    tq = PetscRealPart(dot);
+    PetscCall(LineSearch(s, gamma, tr0, tq, &alpha));
+    /* the step, projected; shorter while the projection undoes the descent (the energy's change
+       is taken from the differences, exact where the energy itself has no digits left) */
+    PetscCall(VecCopy(m->v, m->z)); /* z: the gaps before, pold: their elastic pressure */
+    PetscCall(VecCopy(m->pel, m->pold));
+    for (PetscInt half = 0;; half++) {
+      PetscReal dE;
+      PetscCall(VecWAXPY(m->v, alpha, m->t, m->z));
+      PetscCall(ProjectOntoBound(s, fixmean, mean, m->v, &clamped));
+      if (clamped) PetscCall(ElasticPressure(s));
+      else PetscCall(VecWAXPY(m->pel, alpha, m->q, m->pold));
+      PetscCall(EnergyChange(s, gamma, pbar, &dE));
+      if (dE <= 0) break;
+      if (half == ADH_MAX_HALVINGS) { /* no descent along t: stay, and go down the gradient next */
+        PetscCall(VecCopy(m->z, m->v));
+        PetscCall(VecCopy(m->pold, m->pel));
+        PetscCheck(!down, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stalled at a relative projected gradient %g (-adh_minimize_rtol %g): no step down the gradient lowers the energy", force ? "the force" : "d =", (double)target, (double)rel, (double)s->minimize_rtol);
+        stalls++;
+        restart = steepest = PETSC_TRUE;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (s->minimize_monitor) PetscCall(PetscPrintf(s->comm, "    %4" PetscInt_FMT " relative projected gradient %.6e, step %.3e%s, %" PetscInt_FMT " points changed at the wall, beta %.3g\n", it, (double)rel, (double)alpha, clamped ? " (projected)" : "", changed, (double)beta));
+    since_exact = clamped ? 0 : since_exact + 1;
+    PetscCall(Gradient(s, gamma, pbar));
+    if (since_exact >= 50) { /* updates drift: recompute now and then */
+      PetscCall(ElasticPressure(s));
+      PetscCall(Gradient(s, gamma, pbar));
+      since_exact = 0;
+    }
+    PetscCall(VecCopy(m->rp, m->q)); /* the previous projected gradient, for Polak-Ribiere */
+    if (clamped) restart = PETSC_TRUE;
+  }
+  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+  /* the state: the gaps, the pressure (elastic plus mean), the contact set where the gap is 0 */
+  PetscCall(VecCopy(m->v, s->g));
+  PetscCall(VecCopy(m->pel, s->p));
+  PetscCall(VecShift(s->p, force ? pbar : -mu));
+  if (force) { /* d follows: the mean gap is mean(h) - d */
+    PetscCall(VecSum(m->v, &sum));
+    s->d = s->mean_h - PetscRealPart(sum) / N;
+  }
+  {
+    const PetscScalar *va;
+    PetscCall(VecGetArrayRead(m->v, &va));
+    for (PetscInt k = 0; k < m->n; k++) s->in_set[k] = (char)(PetscRealPart(va[k]) <= 0);
+    PetscCall(VecRestoreArrayRead(m->v, &va));
+  }
+  PetscCall(AdhSolverRebuildSet_Private(s));
+  s->gap_current = PETSC_TRUE;
+  s->step_outer += 1;
+  s->step_ksp += it;
+  m->its_total += it;
+  m->states++;
+  PetscCall(PetscInfo(s, "%s %g: energy minimised in %" PetscInt_FMT " iterations (%" PetscInt_FMT " not downhill, %" PetscInt_FMT " stalled), relative projected gradient %g, %" PetscInt_FMT " points at the wall\n", force ? "the force" : "d =", (double)target, it, restarts, stalls, (double)rel, s->npoints));
+  PetscFunctionReturn(0);
+}

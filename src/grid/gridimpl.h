@@ -102,4 +102,12 @@ PETSC_INTERN PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c);
 PETSC_INTERN PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c);
 PETSC_INTERN PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c);
 PETSC_INTERN PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c);
+/* The free boundary's operators on the padded grid itself (padded.c): the circulant of the free
+   compliance K (inverse false) or its inverse, on vectors of the padded slab layout; their
+   multiplies; which local entries are the grid's points; and the moves of a grid vector into the
+   physical entries of a padded one (reverse: back). */
+PETSC_INTERN PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A);
+PETSC_INTERN PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count);
+PETSC_INTERN PetscErrorCode AdhPaddedGetPhysicalMask_Private(Mat A, char mask[]);
+PETSC_INTERN PetscErrorCode AdhPaddedMove_Private(Mat A, Vec x, Vec y, PetscBool reverse);
 #endif

@@ -102,6 +102,7 @@ typedef struct _n_AdhMinimizer *AdhMinimizer;
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver, PetscOptionItems *);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver, PetscViewer);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverMinimizeMultCount_Private(AdhSolver, PetscInt *);
 
 /* What a contact-set predictor does (impls/predictor/): guess a step's set and pressure without
    adhesion, at an indentation or carrying a force (force true); NULL predict: no guess. */

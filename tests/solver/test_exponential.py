@@ -75,17 +75,40 @@ def test_every_state_is_an_equilibrium_and_a_minimum():
     assert states > 10
 
 
+def test_free_boundary_states_are_the_compliances_equilibria():
+    """On the free boundary the minimisation runs on the zero-padded grid, the padding's
+    displacements free: every state's gap is h - d + K p with the free compliance K (the padding
+    carries no pressure), off the contact the pressure is the law's attraction, on it the gap is 0."""
+    serial_only()
+    n, rho = 24, 0.02
+    peak = GAMMA / rho
+    with solver(n, rho, boundary="free", path=[0.0, 0.01, -0.03], steps=6, stop_at_pulloff=False, minimize_rtol=1e-11) as s:
+        states = 0
+        for state in s.iterate_path():
+            K, x = s.compliance, s.pressure.duplicate()
+            K.mult(s.pressure, x)
+            p, g, h = s.pressure_array(), s.gap_array(), s.profile_array()
+            u = x.getArray().reshape(n, n)
+            assert np.max(np.abs(g - (h - state["d"] + u))) < 1e-9 * np.max(np.abs(u))
+            free = g > 0
+            assert np.max(np.abs(p[free] + peak * np.exp(-g[free] / rho))) < 1e-8 * peak
+            assert np.all(g >= 0) and np.all(p[~free] >= -peak * (1 + 1e-8))
+            states += 1
+    assert states > 10
+
+
 def test_without_adhesion_the_contact_solvers_states():
     """With dgamma = 0 the minimisation is plain contact: the same states as the set solver of the
     zero-range criteria (forces to 1e-8, the same contact points)."""
     serial_only()
-    kw = dict(n=48, boundary="periodic", gamma=0.0, path=[0.002, 0.02, 0.001], steps=9, progress=False)
-    with adhbem.Solver(criterion="exponential", exponential_range=0.01, **kw) as s:
-        a = s.solve_path()
-    with adhbem.Solver(criterion="pohrt-popov", **kw) as s:
-        b = s.solve_path()
-    assert np.array_equal(a["contact_points"], b["contact_points"])
-    assert np.max(np.abs(a["force"] - b["force"])) < 1e-8 * np.max(np.abs(b["force"]))
+    for boundary in ("periodic", "free"):
+        kw = dict(n=48, boundary=boundary, gamma=0.0, path=[0.002, 0.02, 0.001], steps=9, progress=False)
+        with adhbem.Solver(criterion="exponential", exponential_range=0.01, **kw) as s:
+            a = s.solve_path()
+        with adhbem.Solver(criterion="pohrt-popov", **kw) as s:
+            b = s.solve_path()
+        assert np.array_equal(a["contact_points"], b["contact_points"])
+        assert np.max(np.abs(a["force"] - b["force"])) < 1e-8 * np.max(np.abs(b["force"]))
 
 
 def test_long_range_reaches_dmt():
@@ -136,12 +159,13 @@ def test_fft_pairs_a_state_stay_few():
 def test_same_curve_on_any_number_of_ranks():
     """COMM_WORLD against COMM_SELF under both controls: the same contact counts, forces to 1e-8."""
     mpi = PETSc.COMM_WORLD.tompi4py()
-    for control, d in (("displacement", (0.0, 0.01, -0.03)), ("force", (0.005, -0.02))):
-        world = path(30, d=d, steps=8, control=control)
-        alone = path(30, d=d, steps=8, control=control, comm=PETSc.COMM_SELF)
+    for boundary, control, d in (("periodic", "displacement", (0.0, 0.01, -0.03)), ("periodic", "force", (0.005, -0.02)),
+                                 ("free", "displacement", (0.0, 0.01, -0.03))):
+        world = path(30, d=d, steps=8, control=control, boundary=boundary)
+        alone = path(30, d=d, steps=8, control=control, boundary=boundary, comm=PETSc.COMM_SELF)
         same = mpi.allreduce(int(len(world["d"]) == len(alone["d"]) and np.array_equal(world["contact_points"], alone["contact_points"])), op=_min())
         rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
-        say(f"\nexponential, {control}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
+        say(f"\nexponential, {boundary}, {control}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
         assert same == 1 and rel < 1e-8
 
 
@@ -174,7 +198,7 @@ def test_results_attributes_and_restart_refusal(tmp_path):
     ([], "-adh_exponential_range"),
     (["-adh_exponential_range", "-1"], "-adh_exponential_range"),
     (["-adh_exponential_range", "nan"], "-adh_exponential_range"),
-    (["-adh_exponential_range", "0.01", "-adh_boundary", "free"], "-adh_boundary periodic"),
+    (["-adh_exponential_range", "0.01", "-adh_boundary", "free", "-adh_control", "force"], "-adh_boundary periodic"),
     (["-adh_exponential_range", "0.01", "-adh_attach", "reach"], "-adh_attach"),
     (["-adh_exponential_range", "0.01", "-adh_minimize_rtol", "2"], "-adh_minimize_rtol"),
     (["-adh_exponential_range", "0.01", "-adh_minimize_pc", "jacobi"], "-adh_minimize_pc"),

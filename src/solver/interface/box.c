@@ -130,6 +130,7 @@ PetscErrorCode AdhSolverMultCount_Private(AdhSolver s, PetscInt *count, PetscInt
     PetscCall(MatAdhComplianceGetMultCount(s->boxes[k].S, &c));
     f += c;
   }
-  *ffts = *count + f;
+  PetscCall(AdhSolverMinimizeMultCount_Private(s, &c));
+  *ffts = *count + f + c;
   PetscFunctionReturn(0);
 }

@@ -9,11 +9,14 @@
    step is projected back onto the bound (and the mean gap under displacement control). Why not
    TAO: docs/theory/minimisation.md.
 
-   The variables: the gap on the periodic cell. The elastic displacement is u = g - (h - d), the
+   The variables. On a periodic cell the gaps: the elastic displacement is u = g - (h - d), the
    elastic pressure S u (S, the stiffness, applied to mean-free vectors: a periodic cell has no
    mean displacement), and the gradient of the energy per element area at a point is
    r = S u + phi'(g) + pbar, with pbar the mean pressure under force control. Under displacement
-   control the mean gap is mean(h) - d, a constraint whose multiplier is the mean pressure. */
+   control the mean gap is mean(h) - d, a constraint whose multiplier is the mean pressure. On the
+   free boundary the variables live on the zero-padded grid (src/grid/padded.c): the gaps on the
+   grid's points, the displacements beyond them, free; S is the inverse of the padded circulant
+   of the compliance, whose energy minimised over the padding is the free half-space's. */
 #include "solver/solverimpl.h"
 
 /* Under a force, every gap beyond this many zone gaps: the attraction is gone (exp(-69) of its
@@ -25,7 +28,10 @@
 #define ADH_SHORT_MOVE 1e-2
 
 struct _n_AdhMinimizer {
-  Vec      v, b;        /* the gaps, and h - d: u = v - b */
+  Mat      S, C;        /* the stiffness and the compliance on the variables (periodic: the solver's) */
+  char    *surface;     /* free boundary: which local variables are the grid's points (NULL: all are) */
+  Vec      gamma;       /* free boundary: the dgamma field on the variables (NULL: uniform, or the solver's) */
+  Vec      v, b;        /* the gaps (and the padding's displacements), and h - d: u = v - b */
   Vec      pel, q;      /* the elastic pressure S u, and S t */
   Vec      r, rp, z, t; /* the gradient, its projection on the free points, the preconditioned one, the direction */
   Vec      work, pold; /* scratch, and the elastic pressure before a step */
@@ -71,6 +77,10 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
 
   PetscFunctionBegin;
   if (!m) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&m->S));
+  PetscCall(MatDestroy(&m->C));
+  PetscCall(PetscFree(m->surface));
+  PetscCall(VecDestroy(&m->gamma));
   PetscCall(VecDestroy(&m->v));
   PetscCall(VecDestroy(&m->b));
   PetscCall(VecDestroy(&m->pel));
@@ -91,21 +101,69 @@ static PetscErrorCode Create(AdhSolver s)
   AdhMinimizer m;
 
   PetscFunctionBegin;
-  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_SUP, "-adh_criterion %s: a cohesive law needs -adh_boundary periodic", s->criterion_type);
   PetscCall(PetscNew(&m));
-  PetscCall(VecDuplicate(s->h, &m->v));
-  PetscCall(VecDuplicate(s->h, &m->b));
-  PetscCall(VecDuplicate(s->h, &m->pel));
-  PetscCall(VecDuplicate(s->h, &m->q));
-  PetscCall(VecDuplicate(s->h, &m->r));
-  PetscCall(VecDuplicate(s->h, &m->rp));
-  PetscCall(VecDuplicate(s->h, &m->z));
-  PetscCall(VecDuplicate(s->h, &m->t));
-  PetscCall(VecDuplicate(s->h, &m->work));
-  PetscCall(VecDuplicate(s->h, &m->pold));
-  PetscCall(PetscMalloc1(s->nlocal + 1, &m->active));
-  m->n         = s->nlocal;
+  if (s->boundary == ADH_BOUNDARY_PERIODIC) {
+    m->S = s->S;
+    m->C = s->K;
+    PetscCall(PetscObjectReference((PetscObject)m->S));
+    PetscCall(PetscObjectReference((PetscObject)m->C));
+  } else {
+    PetscCall(AdhCreatePaddedOperator_Private(s->K, PETSC_TRUE, &m->S));
+    PetscCall(AdhCreatePaddedOperator_Private(s->K, PETSC_FALSE, &m->C));
+  }
+  PetscCall(MatCreateVecs(m->S, &m->v, NULL));
+  PetscCall(VecGetLocalSize(m->v, &m->n));
+  PetscCall(VecDuplicate(m->v, &m->b));
+  PetscCall(VecDuplicate(m->v, &m->pel));
+  PetscCall(VecDuplicate(m->v, &m->q));
+  PetscCall(VecDuplicate(m->v, &m->r));
+  PetscCall(VecDuplicate(m->v, &m->rp));
+  PetscCall(VecDuplicate(m->v, &m->z));
+  PetscCall(VecDuplicate(m->v, &m->t));
+  PetscCall(VecDuplicate(m->v, &m->work));
+  PetscCall(VecDuplicate(m->v, &m->pold));
+  PetscCall(PetscMalloc1(m->n + 1, &m->active));
+  if (s->boundary == ADH_BOUNDARY_FREE) {
+    PetscCall(PetscMalloc1(m->n + 1, &m->surface));
+    PetscCall(AdhPaddedGetPhysicalMask_Private(m->S, m->surface));
+  }
   s->minimizer = m;
+  PetscFunctionReturn(0);
+}
+
+/* A grid vector x into the variables' layout y (the padding set to outside), or (reverse) back. */
+static PetscErrorCode Move(AdhSolver s, Vec x, Vec y, PetscScalar outside, PetscBool reverse)
+{
+  AdhMinimizer m = s->minimizer;
+
+  PetscFunctionBegin;
+  if (!m->surface) {
+    if (reverse) PetscCall(VecCopy(y, x));
+    else PetscCall(VecCopy(x, y));
+  } else {
+    if (!reverse) PetscCall(VecSet(y, outside));
+    PetscCall(AdhPaddedMove_Private(m->S, x, y, reverse));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Local variable k is a point of the grid, behind the wall and under the law (not the padding's). */
+static inline PetscBool OnSurface(AdhMinimizer m, PetscInt k)
+{
+  return (PetscBool)(!m->surface || m->surface[k]);
+}
+
+/* The multiplies of the free boundary's padded operators (the solver counts its own). */
+PetscErrorCode AdhSolverMinimizeMultCount_Private(AdhSolver s, PetscInt *count)
+{
+  PetscInt a = 0, b = 0;
+
+  PetscFunctionBegin;
+  *count = 0;
+  if (!s->minimizer || !s->minimizer->surface) PetscFunctionReturn(0);
+  PetscCall(AdhPaddedGetMultCount_Private(s->minimizer->S, &a));
+  PetscCall(AdhPaddedGetMultCount_Private(s->minimizer->C, &b));
+  *count = a + b;
   PetscFunctionReturn(0);
 }
 
@@ -117,6 +175,10 @@ static PetscErrorCode ApplyMeanFree(AdhSolver s, Mat A, Vec x, Vec y)
   PetscScalar  sum;
 
   PetscFunctionBegin;
+  if (m->surface) { /* the free boundary: no mean mode to take out */
+    PetscCall(MatMult(A, x, y));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecSum(x, &sum));
   PetscCall(VecCopy(x, m->work));
   PetscCall(VecShift(m->work, -sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
@@ -133,7 +195,7 @@ static PetscErrorCode Precondition(AdhSolver s, PetscBool force, Vec r, Vec z)
 
   PetscFunctionBegin;
   PetscCall(VecSum(r, &sum));
-  PetscCall(ApplyMeanFree(s, s->K, r, z));
+  PetscCall(ApplyMeanFree(s, s->minimizer->C, r, z));
   if (force) PetscCall(VecShift(z, 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly)) * sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
   PetscFunctionReturn(0);
 }
@@ -148,7 +210,7 @@ static inline PetscReal Dgamma(AdhSolver s, const PetscScalar *gamma, PetscInt k
 /* The law at local point k and gap g: potential, attraction and its derivative (none without adhesion). */
 static inline void Law(AdhSolver s, const PetscScalar *gamma, PetscInt k, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi)
 {
-  const PetscReal dg = Dgamma(s, gamma, k);
+  const PetscReal dg = OnSurface(s->minimizer, k) ? Dgamma(s, gamma, k) : 0.0;
 
   if (dg > 0) s->crops.law(s->crops.data, dg, g, phi, dphi, ddphi);
   else *phi = *dphi = *ddphi = 0.0;
@@ -161,7 +223,7 @@ static PetscErrorCode ElasticPressure(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(VecWAXPY(m->q, -1.0, m->b, m->v));
-  PetscCall(ApplyMeanFree(s, s->S, m->q, m->pel));
+  PetscCall(ApplyMeanFree(s, m->S, m->q, m->pel));
   PetscFunctionReturn(0);
 }
 
@@ -244,7 +306,7 @@ static PetscErrorCode Project(AdhSolver s, PetscBool fixmean, PetscReal *mu, Pet
     for (PetscInt pass = 0; pass < 2; pass++) {
       sums[0] = sums[1] = 0.0;
       for (PetscInt k = 0; k < m->n; k++) {
-        const PetscBool held = (PetscBool)(PetscRealPart(va[k]) <= 0 && (pass == 0 || PetscRealPart(ra[k]) - *mu >= 0));
+        const PetscBool held = (PetscBool)(OnSurface(m, k) && PetscRealPart(va[k]) <= 0 && (pass == 0 || PetscRealPart(ra[k]) - *mu >= 0));
         if (held) continue;
         sums[0] += PetscRealPart(ra[k]);
         sums[1] += 1.0;
@@ -255,7 +317,7 @@ static PetscErrorCode Project(AdhSolver s, PetscBool fixmean, PetscReal *mu, Pet
   }
   PetscCall(VecGetArrayWrite(m->rp, &pa));
   for (PetscInt k = 0; k < m->n; k++) {
-    const char held = (char)(PetscRealPart(va[k]) <= 0 && PetscRealPart(ra[k]) - *mu >= 0);
+    const char held = (char)(OnSurface(m, k) && PetscRealPart(va[k]) <= 0 && PetscRealPart(ra[k]) - *mu >= 0);
     if (held != m->active[k]) ch++;
     m->active[k] = held;
     pa[k]        = held ? 0.0 : ra[k] - *mu;
@@ -307,7 +369,7 @@ static PetscErrorCode KeepOffWall(AdhSolver s, PetscBool fixmean, Vec t)
   PetscCall(VecGetArrayRead(m->v, &va));
   PetscCall(VecGetArray(t, &ta));
   for (PetscInt k = 0; k < m->n; k++) {
-    if (PetscRealPart(va[k]) <= 0 && PetscRealPart(ta[k]) < 0) ta[k] = 0.0;
+    if (OnSurface(m, k) && PetscRealPart(va[k]) <= 0 && PetscRealPart(ta[k]) < 0) ta[k] = 0.0;
     sums[0] += PetscRealPart(ta[k]);
     if (PetscRealPart(va[k]) > 0) sums[1] += 1.0;
   }
@@ -408,7 +470,7 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
   PetscFunctionBegin;
   PetscCall(VecGetArray(y, &ya));
   for (PetscInt k = 0; k < m->n; k++)
-    if (PetscRealPart(ya[k]) < 0) neg++;
+    if (OnSurface(m, k) && PetscRealPart(ya[k]) < 0) neg++;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &neg, 1, MPIU_INT, MPI_SUM, s->comm));
   /* with nothing below the wall the mean is right (the directions are mean-free): a shift by
      the rounding would lift the points at the wall off it */
@@ -430,7 +492,7 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
   if (neg)
     for (PetscInt k = 0; k < m->n; k++) {
       const PetscReal x = PetscRealPart(ya[k]) - tau;
-      ya[k]             = x > 0 ? x : 0.0;
+      if (OnSurface(m, k)) ya[k] = x > 0 ? x : 0.0;
     }
   PetscCall(VecRestoreArray(y, &ya));
   *clamped = (PetscBool)(neg > 0);
@@ -440,7 +502,7 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
 PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBool *none)
 {
   const PetscBool    force   = AdhSolverControlsForce_Private(s);
-  const PetscBool    fixmean = (PetscBool)!force;
+  const PetscBool    fixmean = (PetscBool)(!force && s->boundary == ADH_BOUNDARY_PERIODIC); /* a periodic cell's mean gap is held by d */
   const PetscReal    N = (PetscReal)s->grid->Nx * s->grid->Ny, cell = s->grid->Lx * s->grid->Ly;
   const PetscReal    pbar = force ? target / cell : 0.0;
   const PetscScalar *gamma = NULL;
@@ -454,16 +516,22 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   *none = PETSC_FALSE;
   if (!s->minimizer) PetscCall(Create(s));
   m = s->minimizer;
-  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
-  /* from the last state's gaps (of its pressure: a force control's trial may have gone back to it),
-     moved rigidly by the change of d (or as they are under a force) */
-  PetscCall(AdhSolverComputeGap_Private(s));
-  PetscCall(VecCopy(s->g, m->v));
-  if (!force) PetscCall(VecShift(m->v, s->d - target));
-  PetscCall(ProjectOntoBound(s, fixmean, mean, m->v, &clamped));
+  if (s->gamma_field && m->surface) { /* the field on the variables, none on the padding */
+    if (!m->gamma) PetscCall(VecDuplicate(m->v, &m->gamma));
+    PetscCall(Move(s, s->gamma_field, m->gamma, 0.0, PETSC_FALSE));
+  }
+  if (s->gamma_field) PetscCall(VecGetArrayRead(m->surface ? m->gamma : s->gamma_field, &gamma));
+  /* from the last state's pressure (a force control's trial may have gone back to it): its
+     displacement C p and the gaps v = u + h - d at the new d, the surfaces moved rigidly (under a
+     force d is the output, and u = v - b is mean-free either way on a periodic cell) */
   if (!force) s->d = target;
-  PetscCall(VecCopy(s->h, m->b));
-  PetscCall(VecShift(m->b, -s->d)); /* under a force d is the output: u = v - b is mean-free either way */
+  PetscCall(VecCopy(s->h, s->g));
+  PetscCall(VecShift(s->g, -s->d));
+  PetscCall(Move(s, s->g, m->b, 0.0, PETSC_FALSE));
+  PetscCall(Move(s, s->p, m->work, 0.0, PETSC_FALSE));
+  PetscCall(ApplyMeanFree(s, m->C, m->work, m->v));
+  PetscCall(VecAXPY(m->v, 1.0, m->b));
+  PetscCall(ProjectOntoBound(s, fixmean, mean, m->v, &clamped));
   PetscCall(PetscArrayzero(m->active, m->n));
   PetscCall(ElasticPressure(s));
   PetscCall(Gradient(s, gamma, pbar));
@@ -530,7 +598,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     restart  = PETSC_FALSE;
     steepest = PETSC_FALSE;
     /* the step: the elastic part along t is quadratic, S t gives it */
-    PetscCall(ApplyMeanFree(s, s->S, m->t, m->q));
+    PetscCall(ApplyMeanFree(s, m->S, m->t, m->q));
     PetscCall(VecDot(m->t, m->q, &dot));
     tq = PetscRealPart(dot);
     PetscCall(LineSearch(s, gamma, tr0, tq, &alpha));
@@ -567,20 +635,20 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     PetscCall(VecCopy(m->rp, m->q)); /* the previous projected gradient, for Polak-Ribiere */
     if (clamped) restart = PETSC_TRUE;
   }
-  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+  if (gamma) PetscCall(VecRestoreArrayRead(m->surface ? m->gamma : s->gamma_field, &gamma));
   /* the state: the gaps, the pressure (elastic plus mean), the contact set where the gap is 0 */
-  PetscCall(VecCopy(m->v, s->g));
-  PetscCall(VecCopy(m->pel, s->p));
+  PetscCall(Move(s, s->g, m->v, 0.0, PETSC_TRUE));
+  PetscCall(Move(s, s->p, m->pel, 0.0, PETSC_TRUE));
   PetscCall(VecShift(s->p, force ? pbar : -mu));
   if (force) { /* d follows: the mean gap is mean(h) - d */
-    PetscCall(VecSum(m->v, &sum));
+    PetscCall(VecSum(s->g, &sum));
     s->d = s->mean_h - PetscRealPart(sum) / N;
   }
   {
-    const PetscScalar *va;
-    PetscCall(VecGetArrayRead(m->v, &va));
-    for (PetscInt k = 0; k < m->n; k++) s->in_set[k] = (char)(PetscRealPart(va[k]) <= 0);
-    PetscCall(VecRestoreArrayRead(m->v, &va));
+    const PetscScalar *ga;
+    PetscCall(VecGetArrayRead(s->g, &ga));
+    for (PetscInt k = 0; k < s->nlocal; k++) s->in_set[k] = (char)(PetscRealPart(ga[k]) <= 0);
+    PetscCall(VecRestoreArrayRead(s->g, &ga));
   }
   PetscCall(AdhSolverRebuildSet_Private(s));
   s->gap_current = PETSC_TRUE;
@@ -591,3 +659,4 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   PetscCall(PetscInfo(s, "%s %g: energy minimised in %" PetscInt_FMT " iterations (%" PetscInt_FMT " not downhill, %" PetscInt_FMT " stalled), relative projected gradient %g, %" PetscInt_FMT " points at the wall\n", force ? "the force" : "d =", (double)target, it, restarts, stalls, (double)rel, s->npoints));
   PetscFunctionReturn(0);
 }
+

@@ -24,8 +24,9 @@
    rho ln 10, where the tension is at least a tenth of the largest. With a work of adhesion field dgamma(x, y) the
    tension follows it at a common range.
 
-   Needs -adh_boundary periodic. -adh_critical_stress, -adh_attach, -adh_cascade_apart and -adh_cascade_local do not
-   apply: the hard wall is the bound of the minimisation.
+   Both boundaries: on the free boundary the minimisation runs on the zero-padded grid (the padding's displacements
+   free, under displacement control); force control needs -adh_boundary periodic. -adh_critical_stress, -adh_attach,
+   -adh_cascade_apart and -adh_cascade_local do not apply: the hard wall is the bound of the minimisation.
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONDUGDALE`, `ADHCRITERIONCRACKCLOSURE`
 M*/
@@ -95,7 +96,7 @@ static PetscErrorCode SetUp_Exponential(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCheck(ex->rho > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion exponential needs the range: give -adh_exponential_range RHO (> 0)");
-  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion exponential needs -adh_boundary periodic");
+  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion exponential with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion exponential, whose largest tension is dgamma/rho");
   PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion exponential: the hard wall is the bound of its energy minimisation");
   PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion exponential");
@@ -134,11 +135,12 @@ static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The minimisation's vectors: nine grid vectors and a byte a point. */
+/* The minimisation's vectors: ten of its variables and a byte each, the variables a point on a
+   periodic cell and four on the free boundary's padded grid (with two padded operators). */
 static PetscErrorCode Memory_Exponential(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
   PetscFunctionBegin;
-  *per_point = 9.0 * sizeof(PetscScalar) + 1.0;
+  *per_point = (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (10.0 * sizeof(PetscScalar) + 2.0);
   *per_rank  = 0.0;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,158 @@
+/* The free boundary's operators on the zero-padded 2Ny x 2Nx grid itself, for a cohesive law's
+   energy minimisation (src/solver/interface/minimize.c): the circulant C whose physical block is
+   the free compliance K, and its inverse, the padded stiffness. C is positive definite (its
+   smallest eigenvalue is about 0.58 h/E* at any size), and the smallest elastic energy of
+   displacements u on the padded grid that equal u_N on the physical part is u_N^T K^-1 u_N / 2
+   (the Schur complement of C^-1 is K^-1): a minimisation over the padded displacements, the
+   outside ones free, is the free half-space's. Vectors live in the padded transform's slab
+   layout, its local rows of the 2Ny, 2Nx entries a row: no scatter for a multiply; the moves to
+   and from the grid's vectors take the physical rows' scatter of the compliance. */
+#include "grid/gridimpl.h"
+
+/* The padded rows of the vector into the transform's array (its stride), the multiplier, and back. */
+static PetscErrorCode MatMult_Padded(Mat A, Vec x, Vec y)
+{
+  Compliance        *c;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  AdhTransform       t;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &c));
+  t = c->t;
+  PetscCall(PetscLogEventBegin(ADH_ComplianceMult, A, x, y, 0));
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (ptrdiff_t r = 0; r < t->local_n0; r++) {
+    for (ptrdiff_t i = 0; i < t->n1; i++) t->data[r * t->stride + i] = PetscRealPart(xa[r * t->n1 + i]);
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  fftw_execute(t->forward);
+  {
+    fftw_complex *spec = (fftw_complex *)t->data;
+    if (t->serial)
+      for (ptrdiff_t k0 = 0; k0 < t->n0; k0++) {
+        const double *m = c->multiplier + (k0 <= t->n0 / 2 ? k0 : t->n0 - k0) * t->local_n1;
+        for (ptrdiff_t a = 0; a < t->local_n1; a++) {
+          spec[k0 * t->local_n1 + a][0] *= m[a];
+          spec[k0 * t->local_n1 + a][1] *= m[a];
+        }
+      }
+    else
+      for (ptrdiff_t a = 0; a < t->local_n1; a++) {
+        const double *m = c->multiplier + a * c->nhalf;
+        for (ptrdiff_t k0 = 0; k0 < t->n0; k0++) {
+          const double mk = m[k0 <= t->n0 / 2 ? k0 : t->n0 - k0];
+          spec[a * t->n0 + k0][0] *= mk;
+          spec[a * t->n0 + k0][1] *= mk;
+        }
+      }
+  }
+  fftw_execute(t->backward);
+  c->nmult++;
+  PetscCall(VecGetArrayWrite(y, &ya));
+  for (ptrdiff_t r = 0; r < t->local_n0; r++) {
+    for (ptrdiff_t i = 0; i < t->n1; i++) ya[r * t->n1 + i] = t->data[r * t->stride + i];
+  }
+  PetscCall(VecRestoreArrayWrite(y, &ya));
+  PetscCall(PetscLogFlops(4.0 * t->local_n1 * t->n0));
+  PetscCall(PetscLogEventEnd(ADH_ComplianceMult, A, x, y, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MatDestroy_Padded(Mat A)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &c));
+  PetscCall(AdhTransformRelease_Private(&c->t));
+  PetscCall(PetscFree(c->multiplier));
+  PetscCall(PetscFree(c));
+  PetscFunctionReturn(0);
+}
+
+/* The padded circulant of the free compliance K of a grid (inverse false) or its inverse, as a
+   MATSHELL on the padded slab layout, sharing the grid's padded transform with K. */
+PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A)
+{
+  Compliance     *k, *c;
+  MeanCompliance *mean;
+  ptrdiff_t       nspec;
+
+  PetscFunctionBegin;
+  PetscCall(AdhComplianceGet_Private(K, "AdhCreatePaddedOperator_Private", PETSC_FALSE, &k, &mean));
+  PetscCheck(k->kind == KIND_FREE, k->comm, PETSC_ERR_ARG_WRONG, "The padded operators are the free compliance's");
+  PetscCall(PetscNew(&c));
+  *c      = *k;
+  c->nmult = c->nmult_single = 0;
+  c->single = PETSC_FALSE;
+  c->t->refct++;
+  nspec = c->t->local_n1 * c->nhalf;
+  PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
+  /* the multiplier holds the symbol over n0 n1 (the transforms' scale): its inverse is scale^2/m */
+  for (ptrdiff_t k0 = 0; k0 < nspec; k0++) {
+    const PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1);
+    c->multiplier[k0] = inverse ? scale * scale / k->multiplier[k0] : k->multiplier[k0];
+  }
+  PetscCall(MatCreateShell(c->comm, c->t->local_n0 * c->t->n1, c->t->local_n0 * c->t->n1, c->t->n0 * c->t->n1, c->t->n0 * c->t->n1, c, A));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_Padded));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Padded));
+  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_Padded));
+  PetscCall(MatSetOption(*A, MAT_SPD, PETSC_TRUE));
+  PetscCall(MatSetUp(*A));
+  PetscFunctionReturn(0);
+}
+
+/* The multiplies a padded operator has done. */
+PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count)
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &c));
+  *count = c->nmult;
+  PetscFunctionReturn(0);
+}
+
+/* Which local entries of a padded vector are the grid's points (1) and which the padding (0). */
+PetscErrorCode AdhPaddedGetPhysicalMask_Private(Mat A, char mask[])
+{
+  Compliance *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &c));
+  for (ptrdiff_t r = 0; r < c->t->local_n0; r++)
+    for (ptrdiff_t i = 0; i < c->t->n1; i++) mask[r * c->t->n1 + i] = (char)(r < c->t->phys_rows && i < c->Nx);
+  PetscFunctionReturn(0);
+}
+
+/* A grid vector x into the physical entries of the padded vector y (its padding left as it is),
+   or (reverse) the physical entries of y into x. */
+PetscErrorCode AdhPaddedMove_Private(Mat A, Vec x, Vec y, PetscBool reverse)
+{
+  Compliance  *c;
+  AdhTransform t;
+  PetscScalar *xa, *ya;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, &c));
+  t = c->t;
+  if (t->toFFT && !reverse) {
+    PetscCall(VecScatterBegin(t->toFFT, x, t->xfft, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(t->toFFT, x, t->xfft, INSERT_VALUES, SCATTER_FORWARD));
+  }
+  PetscCall(VecGetArray(t->toFFT ? t->xfft : x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (ptrdiff_t r = 0; r < t->phys_rows; r++)
+    for (ptrdiff_t i = 0; i < c->Nx; i++) {
+      if (reverse) xa[r * c->Nx + i] = ya[r * t->n1 + i];
+      else ya[r * t->n1 + i] = xa[r * c->Nx + i];
+    }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArray(t->toFFT ? t->xfft : x, &xa));
+  if (t->toFFT && reverse) {
+    PetscCall(VecScatterBegin(t->toFFT, t->xfft, x, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(t->toFFT, t->xfft, x, INSERT_VALUES, SCATTER_REVERSE));
+  }
+  PetscFunctionReturn(0);
+}

@@ -171,6 +171,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsReal("-adh_cascade_local_rtol", "The relative residual at which the local solves of -adh_cascade_local stop, relative to the residual the points let go leave", "AdhSolver", s->cascade_local_rtol, &s->cascade_local_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
   PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
+  PetscCall(AdhSolverMinimizeSetFromOptions_Private(s, PetscOptionsObject)); /* the cohesive laws' steps */
   PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
   PetscOptionsEnd();
   s->certify = certify;

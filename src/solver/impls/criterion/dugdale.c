@@ -34,8 +34,15 @@
 M*/
 #include "solver/solverimpl.h"
 
+/* How a step finds the zone: the energy minimisation of the law (its traction's drop at the range
+   smoothed over a share of it), or the fixed point of the set updates. */
+typedef enum { ADH_DUGDALE_MINIMIZE, ADH_DUGDALE_FIXED_POINT } AdhDugdaleRoute;
+static const char *const AdhDugdaleRoutes[] = {"minimize", "fixed-point", "AdhDugdaleRoute", "ADH_DUGDALE_", NULL};
+
 typedef struct {
   PetscReal s0;     /* -adh_dugdale_stress: the cohesive stress */
+  AdhDugdaleRoute route;     /* -adh_dugdale_route */
+  PetscReal       smoothing; /* -adh_dugdale_smoothing: the drop spread over range (1 -+ smoothing) */
   char     *left;   /* how often each local point left the zone in the current step (ADH_ZONE_EXITS: it stays out) */
   PetscInt  nleft;
 } Dugdale;
@@ -123,6 +130,34 @@ static PetscErrorCode Evaluate_Dugdale(AdhSolver s, PetscBool detach, PetscInt *
   PetscFunctionReturn(0);
 }
 
+/* The law of the minimisation: the tension s0 up to the gap range (1 - e), falling linearly to 0
+   at range (1 + e) (the work of separation stays s0 range = dgamma), none beyond. */
+static void Law_Dugdale(const void *data, PetscReal dgamma, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi)
+{
+  const Dugdale  *dd = (const Dugdale *)data;
+  const PetscReal range = dgamma / dd->s0, a = range * (1.0 - dd->smoothing), b = range * (1.0 + dd->smoothing);
+
+  if (g <= a) {
+    *phi   = -dgamma + dd->s0 * g;
+    *dphi  = dd->s0;
+    *ddphi = 0.0;
+  } else if (g < b) {
+    *phi   = -0.5 * dd->s0 * (b - g) * (b - g) / (b - a);
+    *dphi  = dd->s0 * (b - g) / (b - a);
+    *ddphi = -dd->s0 / (b - a);
+  } else *phi = *dphi = *ddphi = 0.0;
+}
+
+static PetscReal ZoneGap_Dugdale(const void *data, PetscReal dgamma)
+{
+  return dgamma / ((const Dugdale *)data)->s0;
+}
+
+static PetscReal Peak_Dugdale(const void *data, PetscReal dgamma)
+{
+  return ((const Dugdale *)data)->s0;
+}
+
 /* A step begins: no point has left the zone yet. */
 static PetscErrorCode Begin_Dugdale(AdhSolver s)
 {
@@ -145,6 +180,13 @@ static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, PetscOptionItems *Pets
   PetscFunctionBegin;
   PetscCall(PetscOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
   PetscCheck(dd->s0 == 0 || (dd->s0 > 0 && !PetscIsInfOrNanReal(dd->s0)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_stress must be > 0 and finite, got %g", (double)dd->s0);
+  PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
+  PetscCall(PetscOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
+  PetscCheck(dd->smoothing > 0 && dd->smoothing < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_smoothing must lie in (0, 1), got %g", (double)dd->smoothing);
+  /* the route decides the kind of step: a law minimises, none updates sets */
+  s->crops.law      = dd->route == ADH_DUGDALE_MINIMIZE ? Law_Dugdale : NULL;
+  s->crops.zone_gap = dd->route == ADH_DUGDALE_MINIMIZE ? ZoneGap_Dugdale : NULL;
+  s->crops.peak     = dd->route == ADH_DUGDALE_MINIMIZE ? Peak_Dugdale : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -184,9 +226,15 @@ static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
     if (s->gamma_field) PetscCall(PetscViewerASCIIPrintf(viewer, "cohesive stress s0 = %g; the range dgamma(x,y)/s0 follows the field\n", (double)dd->s0));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "cohesive stress s0 = %g, range dgamma/s0 = %g (%g grid spacings)\n", (double)dd->s0, (double)range, (double)(s->grid->hx > 0 ? range / PetscMin(s->grid->hx, s->grid->hy) : 0)));
     if (sphere && !s->gamma_field) PetscCall(PetscViewerASCIIPrintf(viewer, "Tabor-Maugis lambda of the sphere %g (JKR: large, DMT: small)\n", (double)Lambda(s, dd->s0)));
+    if (dd->route == ADH_DUGDALE_MINIMIZE) {
+      PetscCall(PetscViewerASCIIPrintf(viewer, "the tension falls from s0 to 0 between the gaps range (1 -+ %g)\n", (double)dd->smoothing));
+      PetscCall(AdhSolverMinimizeView_Private(s, viewer));
+    } else PetscCall(PetscViewerASCIIPrintf(viewer, "steps: the fixed point of set updates (-adh_dugdale_route fixed-point)\n"));
   }
   if (ishdf5) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_stress", PETSC_REAL, &dd->s0));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_route", PETSC_STRING, AdhDugdaleRoutes[dd->route]));
+    if (dd->route == ADH_DUGDALE_MINIMIZE) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_smoothing", PETSC_REAL, &dd->smoothing));
     if (!s->gamma_field) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_range", PETSC_REAL, &range));
     if (sphere && !s->gamma_field) {
       PetscReal lambda = Lambda(s, dd->s0);
@@ -202,6 +250,7 @@ static PetscErrorCode Memory_Dugdale(AdhSolver s, PetscLogDouble *per_point, Pet
 {
   PetscFunctionBegin;
   *per_point = 2.0 * sizeof(PetscScalar) + 1.0;
+  if (((Dugdale *)s->crops.data)->route == ADH_DUGDALE_MINIMIZE) *per_point = (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (10.0 * sizeof(PetscScalar) + 2.0);
   *per_rank  = 0.0;
   PetscFunctionReturn(0);
 }
@@ -213,7 +262,13 @@ static PetscErrorCode Shape_Dugdale(AdhSolver s, PetscInt *n, AdhShapingOption s
 
   PetscFunctionBegin;
   shape[0] = (AdhShapingOption){"-adh_dugdale_stress", PETSC_REAL, &dd->s0};
-  *n       = 1;
+  shape[1] = (AdhShapingOption){"-adh_dugdale_route", PETSC_STRING, AdhDugdaleRoutes[dd->route]};
+  *n       = 2;
+  if (dd->route == ADH_DUGDALE_MINIMIZE) {
+    shape[2] = (AdhShapingOption){"-adh_dugdale_smoothing", PETSC_REAL, &dd->smoothing};
+    shape[3] = (AdhShapingOption){"-adh_minimize_rtol", PETSC_REAL, &s->minimize_rtol};
+    *n       = 4;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -223,6 +278,7 @@ static PetscErrorCode Destroy_Dugdale(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscFree(dd->left));
+  PetscCall(AdhSolverMinimizeDestroy_Private(s));
   PetscCall(PetscFree(s->crops.data));
   PetscFunctionReturn(0);
 }
@@ -233,6 +289,8 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&dd));
+  dd->route                    = ADH_DUGDALE_FIXED_POINT;
+  dd->smoothing                = 0.1;
   s->crops.data                = dd;
   s->crops.attach              = ADH_ATTACH_PENETRATION;
   s->crops.cohesive            = PETSC_TRUE;

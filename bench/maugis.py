@@ -11,10 +11,16 @@ shows: the zone's edge is where an element's centre lies within the range). Pull
 contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact radius, at 10
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
-    ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P]
+    ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P] [--route fixed-point,minimize]
+        [--smoothing 0.1]
 
-The table: lambda, the grid, the zone's width in elements (from the run's resolution report), the
-largest tension over Maugis', the first-order extrapolation over Maugis', counts and CPU time.
+--route: how the steps find the zone, each route on every case: the fixed point of set updates
+(Maugis' sharp law) and the energy minimisation of the law smoothed over --smoothing of its range
+(-adh_dugdale_route minimize -adh_dugdale_smoothing).
+
+The table: lambda, the route, the grid, the zone's width in elements (from the run's resolution
+report), the largest tension over Maugis', the first-order extrapolation over Maugis' (the fixed
+point's order), the iterations (KSP or the minimisation's), FFT pairs and CPU time.
 """
 import argparse
 import math
@@ -46,14 +52,16 @@ def case(lam, width):
     return s0, N, N * h, -P * force, a, zone, D * dscale
 
 
-def run(lam, width, steps, np_):
+def run(lam, width, steps, np_, route="fixed-point", smoothing=0.1):
     s0, N, L, F, a, zone, d_pull = case(lam, width)
     d0 = 0.5 * a * a  # a preload of about the pull-off contact's Hertz indentation
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "m.h5")
         cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE, "-adh_n", str(N), "-adh_size", repr(L), "-adh_gamma", repr(GAMMA),
                "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_path", f"{d0!r},{2 * d_pull - 0.2 * d0!r}",
-               "-adh_steps", str(steps), "-adh_output", out, "-adh_progress", "0"]
+               "-adh_steps", str(steps), "-adh_output", out, "-adh_progress", "0", "-adh_dugdale_route", route]
+        if route == "minimize":
+            cmd += ["-adh_dugdale_smoothing", repr(smoothing)]
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -74,22 +82,29 @@ def main():
     ap.add_argument("--widths", default="5,10", help="the zone's width at pull-off in elements, one grid each (each twice the last)")
     ap.add_argument("--steps", type=int, default=80, help="steps of the path (preload to beyond the pull-off)")
     ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--route", default="fixed-point,minimize", help="the routes to run: fixed-point, minimize or both")
+    ap.add_argument("--smoothing", type=float, default=0.1, help="the minimize route's -adh_dugdale_smoothing")
     a = ap.parse_args()
+    routes = a.route.split(",")
+    for route in routes:
+        if route not in ("fixed-point", "minimize"):
+            sys.exit(f"bench maugis: --route: unknown route '{route}' (fixed-point, minimize)")
     lambdas = [float(v) for v in a.lambdas.split(",")]
     widths = [float(v) for v in a.widths.split(",")]
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
-    print(f"{'lambda':>7} {'Maugis P':>9} {'N':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'KSP':>8} {'FFT pairs':>10} {'CPU s':>7}")
+    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'iterations':>10} {'FFT pairs':>10} {'CPU s':>7}")
     for lam in lambdas:
-        rows = [run(lam, w, a.steps, a.np) for w in widths]
-        P = rows[0]["exact"] / (math.pi * GAMMA)
-        for k, r in enumerate(rows):
-            extra = ""
-            if k > 0:  # first order in the spacing, whose ratio is the widths' (the domain is the same)
-                q = widths[k] / widths[k - 1]
-                f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
-                extra = f"{f_inf / r['exact']:.4f}"
-            print(f"{lam:>7g} {P:>9.4f} {r['N']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>8} {r['ffts']:>10} {r['cpu']:>7.1f}",
-                  flush=True)
+        for route in routes:
+            rows = [run(lam, w, a.steps, a.np, route, a.smoothing) for w in widths]
+            P = rows[0]["exact"] / (math.pi * GAMMA)
+            for k, r in enumerate(rows):
+                extra = ""
+                if k > 0 and route == "fixed-point":  # first order in the spacing, whose ratio is the widths' (the domain is the same)
+                    q = widths[k] / widths[k - 1]
+                    f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
+                    extra = f"{f_inf / r['exact']:.4f}"
+                print(f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>10} {r['ffts']:>10} {r['cpu']:>7.1f}",
+                      flush=True)
 
 
 if __name__ == "__main__":

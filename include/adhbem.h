@@ -304,6 +304,7 @@ PETSC_EXTERN PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *, PetscInt *
    the share of its tension carried by contact patches too small to be resolved, and the verdict. */
 typedef struct {
   PetscReal asperity_contact_radius; /* JKR contact radius at pull-off over the grid spacing (0: no estimate) */
+  PetscReal asperity_tabor;          /* a finite-range criterion's Tabor parameter of the same asperities (Tabor's mu, Maugis' lambda for dugdale; 0: none) */
   PetscBool touched;                 /* some recorded state had points in contact */
   PetscInt  state;                   /* the curve row of the largest tension (-1: no tension carried) */
   PetscReal force;                   /* the force there (< 0) */

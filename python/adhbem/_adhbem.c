@@ -715,7 +715,7 @@ static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
   AdhResolution r;
   if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetResolution(solver, &r));
-  return Py_BuildValue("{s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n}", "asperity_contact_radius", (double)r.asperity_contact_radius, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped);
+  return Py_BuildValue("{s:d,s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n}", "asperity_contact_radius", (double)r.asperity_contact_radius, "asperity_tabor", (double)r.asperity_tabor, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped);
 }
 
 static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)

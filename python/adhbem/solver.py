@@ -452,11 +452,13 @@ class Solver:
         - ``asperity_contact_radius``: the JKR contact radius at pull-off of the sphere or of the
           smallest asperities (from the surface's mean summit curvature), in grid spacings, estimated
           at set-up from the profile (0.0: no estimate: no adhesion, or a shape without one);
+        - ``asperity_tabor``: with a finite-range criterion (``dugdale``, ``exponential``), the
+          Tabor parameter of the same sphere or asperities (Maugis' lambda, Tabor's mu; 0.0: none);
         - ``touched``: whether any recorded state had a point in contact;
         - ``state``, ``force``: the curve row of the largest tension and its force (-1, 0.0: none);
         - ``small_patch_tension``, ``smallest_tensile_patch``: there, the share of the tension
           carried by contact patches under 314 elements, and the smallest patch with a net tension;
-        - ``cohesive_elements``, ``cohesive_width``: with ``criterion="dugdale"``, the elements its
+        - ``cohesive_elements``, ``cohesive_width``: with a finite-range criterion, the elements its
           cohesive zone covers there, and for a sphere how many grid spacings wide the zone is
           (under 10 the pull-off force depends on the grid; 0.0: no zone);
         - ``resolved``: the verdict (``None`` before a state carried tension);

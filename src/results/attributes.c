@@ -128,6 +128,7 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   if (s->cops.base.view) PetscCall(s->cops.base.view(s, v));
   if (s->pops.base.view) PetscCall(s->pops.base.view(s, v));
   if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
+  if (s->asperity_tabor > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_tabor", PETSC_REAL, &s->asperity_tabor));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_rtol", PETSC_REAL, &s->cascade_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_apart", PETSC_INT, &s->cascade_apart));

@@ -94,6 +94,10 @@ typedef struct {
      law's largest attraction, both for a point with work of adhesion dgamma */
   PetscReal (*zone_gap)(const void *data, PetscReal dgamma);
   PetscReal (*peak)(const void *data, PetscReal dgamma);
+  /* Optional, a finite-range criterion's: its Tabor parameter for a summit of radius R with work
+     of adhesion dgamma, and the parameter's name ("mu", "lambda") */
+  PetscReal (*tabor)(AdhSolver, PetscReal R, PetscReal dgamma);
+  const char *tabor_name;
 } AdhCriterionOps;
 
 /* The energy minimisation of a step under a cohesive law (interface/minimize.c): its options, in
@@ -203,6 +207,7 @@ struct _p_AdhSolver {
   PetscBool       minimize_monitor; /* -adh_minimize_monitor: a line per iteration */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
+  PetscReal       asperity_tabor;   /* a finite-range criterion's Tabor parameter of those asperities (0: none) */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;

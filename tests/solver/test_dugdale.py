@@ -193,6 +193,7 @@ def test_results_attributes_and_restart_refusal(tmp_path):
         assert float(f.attrs["dugdale_stress"]) == pytest.approx(s0, rel=1e-12)
         assert float(f.attrs["dugdale_range"]) == pytest.approx(GAMMA / s0, rel=1e-12)
         assert float(f.attrs["tabor_lambda"]) == pytest.approx(1.0, rel=1e-9)
+        assert float(f.attrs["asperity_tabor"]) == pytest.approx(1.0, rel=1e-9)  # the resolution report's, of the sphere
     r = subprocess.run(base + ["-adh_dugdale_stress", str(2 * s0), "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode != 0 and "-adh_dugdale_stress" in r.stderr, r.stderr[-2000:]

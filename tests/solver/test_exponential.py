@@ -185,6 +185,7 @@ def test_results_attributes_and_restart_refusal(tmp_path):
         assert float(f.attrs["exponential_range"]) == pytest.approx(0.01, rel=1e-12)
         mu = (GAMMA ** 2 / 0.01 ** 3) ** (1 / 3)
         assert float(f.attrs["tabor_mu"]) == pytest.approx(mu, rel=1e-9)
+        assert float(f.attrs["asperity_tabor"]) == pytest.approx(mu, rel=1e-9)  # the resolution report's, of the sphere
         assert np.all(f["curve/cohesive_area"][1:] > 0)
     r = subprocess.run(base + ["-adh_exponential_range", "0.02", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
                        capture_output=True, text=True, timeout=120)

@@ -19,7 +19,8 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
   const AdhIndenterType type = s->indenter.type;
 
   PetscFunctionBegin;
-  s->asperity_ac = 0.0;
+  s->asperity_ac    = 0.0;
+  s->asperity_tabor = 0.0;
   if (s->gamma_field) { /* the weakest adhesion present: the smallest a_c, the safe side */
     const PetscScalar *ga;
     PetscInt           n;
@@ -50,6 +51,7 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
     PetscCall(VecDestroy(&b));
   }
   if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * s->Estar), 1.0 / 3.0) / h;
+  if (R > 0 && s->crops.tabor) s->asperity_tabor = s->crops.tabor(s, R, dgamma);
   PetscFunctionReturn(0);
 }
 
@@ -150,6 +152,7 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(PetscMemzero(r, sizeof(*r)));
   r->asperity_contact_radius = s->asperity_ac;
+  r->asperity_tabor          = s->asperity_tabor;
   for (PetscInt k = 0; k < s->curve.n; k++)
     if (s->curve.state[k].contact_points > 0) r->touched = PETSC_TRUE;
   PetscCall(AdhCurveGetPullOffState(&s->curve, &r->state));
@@ -212,6 +215,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
   if (r.stopped >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: path: stopped where the surfaces came apart (state %" PetscInt_FMT ", d = %g), with legs left: -adh_stop_at_pulloff false runs them\n", r.stopped, (double)s->curve.state[r.stopped].d));
   if (r.asperity_contact_radius > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: JKR contact radius at pull-off of %s: about %.3g grid spacings%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities (from the surface's mean summit curvature)", (double)r.asperity_contact_radius, r.asperity_contact_radius < ADH_RESOLVED_RADIUS ? (r.apart >= 0 || !s->curve.n ? " (under 10: the pull-off force depends on the grid)" : " (under 10: the largest tension depends on the grid)") : ""));
+  if (r.asperity_tabor > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: the range against %s: Tabor's %s = %.3g (%s)\n", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities", s->crops.tabor_name, (double)r.asperity_tabor, r.asperity_tabor >= 3 ? "near the JKR limit: the cohesive zone is narrow, about a tenth of the contact radius at 3" : r.asperity_tabor <= 0.1 ? "near DMT: the zone is wide" : "between DMT and JKR"));
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));

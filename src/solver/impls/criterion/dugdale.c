@@ -212,6 +212,13 @@ static PetscReal Lambda(AdhSolver s, PetscReal s0)
   return 2.0 * s0 * PetscCbrtReal(R / (PETSC_PI * s->gamma * K * K));
 }
 
+/* The resolution report's Tabor-Maugis parameter of a summit of radius R. */
+static PetscReal Tabor_Dugdale(AdhSolver s, PetscReal R, PetscReal dgamma)
+{
+  const PetscReal K = 4.0 * s->Estar / 3.0;
+  return 2.0 * ((Dugdale *)s->crops.data)->s0 * PetscCbrtReal(R / (PETSC_PI * dgamma * K * K));
+}
+
 /* Its line of -adh_view, and its attributes in the results file. */
 static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
 {
@@ -296,6 +303,8 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
   s->crops.cohesive            = PETSC_TRUE;
   s->crops.evaluate            = Evaluate_Dugdale;
   s->crops.begin               = Begin_Dugdale;
+  s->crops.tabor               = Tabor_Dugdale;
+  s->crops.tabor_name          = "lambda";
   s->crops.base.setfromoptions = SetFromOptions_Dugdale;
   s->crops.base.view           = View_Dugdale;
   s->crops.base.setup          = SetUp_Dugdale;

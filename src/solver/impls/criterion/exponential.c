@@ -109,6 +109,13 @@ static PetscReal Tabor(AdhSolver s, PetscReal rho)
   return PetscCbrtReal(s->indenter.radius * s->gamma * s->gamma / (s->Estar * s->Estar * rho * rho * rho));
 }
 
+/* The resolution report's Tabor parameter of a summit of radius R. */
+static PetscReal Tabor_Exponential(AdhSolver s, PetscReal R, PetscReal dgamma)
+{
+  const PetscReal rho = ((Exponential *)s->crops.data)->rho;
+  return PetscCbrtReal(R * dgamma * dgamma / (s->Estar * s->Estar * rho * rho * rho));
+}
+
 /* Its lines of -adh_view, and its attributes in the results file. */
 static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
 {
@@ -177,6 +184,8 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
   s->crops.law                 = Law_Exponential;
   s->crops.zone_gap            = ZoneGap_Exponential;
   s->crops.peak                = Peak_Exponential;
+  s->crops.tabor               = Tabor_Exponential;
+  s->crops.tabor_name          = "mu";
   s->crops.base.setfromoptions = SetFromOptions_Exponential;
   s->crops.base.view           = View_Exponential;
   s->crops.base.setup          = SetUp_Exponential;

@@ -212,3 +212,54 @@ def test_bad_input_refused(args, culprit):
         base += ["-adh_boundary", "periodic"]
     r = subprocess.run(base + args, capture_output=True, text=True, timeout=60)
     assert r.returncode != 0 and culprit in r.stderr, r.stderr[-2000:]
+
+
+def test_gamma_field():
+    """A work-of-adhesion field under the law: a constant one is the scalar to rounding, on both
+    boundaries; with dgamma halved on half the cell the largest tension lies between the two
+    uniform ones'."""
+    serial_only()
+    n = 32
+    x = (np.arange(n) - n / 2 + 0.5) / n
+    X, _ = np.meshgrid(x, x)
+    for boundary in ("periodic", "free"):
+        scalar = path(n, boundary=boundary)
+        same = path(n, boundary=boundary, gamma_field=np.full((n, n), GAMMA))
+        assert np.array_equal(same["contact_points"], scalar["contact_points"])
+        assert np.max(np.abs(same["force"] - scalar["force"])) < 1e-10 * np.max(np.abs(scalar["force"]))
+    half = -np.min(path(n, gamma_field=np.where(X > 0, GAMMA / 2, GAMMA))["force"])
+    weaker = -np.min(path(n, gamma=GAMMA / 2)["force"])
+    stronger = -np.min(path(n)["force"])
+    say(f"\nexponential with a dgamma field: largest tension {half:.6g} between {weaker:.6g} and {stronger:.6g}")
+    assert weaker < half < stronger
+
+
+def test_free_boundary_restart_continues_the_curve(tmp_path):
+    """On the free boundary a run stopped by SIGTERM after a few states and restarted from its
+    checkpoint gives the uninterrupted curve (forces to 1e-8: the restart starts from the
+    checkpoint's pressure, the minimisation to its tolerance)."""
+    serial_only()
+    import signal
+    import time
+    import h5py
+    base = [EXE, "-adh_n", "128", "-adh_gamma", str(GAMMA), "-adh_criterion", "exponential", "-adh_exponential_range", "0.01",
+            "-adh_path", "0,0.01,-0.03", "-adh_steps", "20", "-adh_start", "adhesive", "-adh_stop_at_pulloff", "false",
+            "-adh_fftw_planner", "estimate"]
+    r = subprocess.run(base + ["-adh_output", str(tmp_path / "whole.h5")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    run = base + ["-adh_output", str(tmp_path / "run.h5"), "-adh_checkpoint", str(tmp_path / "run.ck.h5")]
+    p = subprocess.Popen(run, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    journal = tmp_path / "run.csv.part"
+    while p.poll() is None and (not journal.exists() or len(journal.read_text().splitlines()) < 6):
+        time.sleep(0.01)
+    p.send_signal(signal.SIGTERM)
+    p.communicate(timeout=120)
+    with h5py.File(tmp_path / "run.h5", "r") as f:
+        stopped = len(f["curve/force"][()])
+    r = subprocess.run(run + ["-adh_restart", str(tmp_path / "run.ck.h5")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with h5py.File(tmp_path / "whole.h5", "r") as f, h5py.File(tmp_path / "run.h5", "r") as g:
+        whole, restarted = f["curve/force"][()], g["curve/force"][()]
+    say(f"\nexponential, free boundary: stopped after {stopped} of {len(whole)} states, restarted")
+    assert 0 < stopped < len(whole) and len(restarted) == len(whole)
+    assert np.max(np.abs(restarted - whole)) < 1e-8 * np.max(np.abs(whole))

@@ -12,7 +12,7 @@ contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
     ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P] [--route fixed-point,minimize]
-        [--smoothing 0.1]
+        [--smoothing 0.2]
 
 --route: how the steps find the zone, each route on every case: the fixed point of set updates
 (Maugis' sharp law) and the energy minimisation of the law smoothed over --smoothing of its range
@@ -52,7 +52,7 @@ def case(lam, width):
     return s0, N, N * h, -P * force, a, zone, D * dscale
 
 
-def run(lam, width, steps, np_, route="fixed-point", smoothing=0.1):
+def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2):
     s0, N, L, F, a, zone, d_pull = case(lam, width)
     d0 = 0.5 * a * a  # a preload of about the pull-off contact's Hertz indentation
     with tempfile.TemporaryDirectory() as tmp:
@@ -83,7 +83,7 @@ def main():
     ap.add_argument("--steps", type=int, default=80, help="steps of the path (preload to beyond the pull-off)")
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--route", default="fixed-point,minimize", help="the routes to run: fixed-point, minimize or both")
-    ap.add_argument("--smoothing", type=float, default=0.1, help="the minimize route's -adh_dugdale_smoothing")
+    ap.add_argument("--smoothing", type=float, default=0.2, help="the minimize route's -adh_dugdale_smoothing")
     a = ap.parse_args()
     routes = a.route.split(",")
     for route in routes:

@@ -89,6 +89,13 @@ PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A)
   c->t->refct++;
   nspec = c->t->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
+  /* the inverse needs C positive definite: check it (about 0.58 h/E* at its smallest) */
+  {
+    PetscReal lmin = PETSC_MAX_REAL;
+    for (ptrdiff_t k0 = 0; k0 < nspec; k0++) lmin = PetscMin(lmin, k->multiplier[k0]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, k->comm));
+    PetscCheck(lmin > 0, k->comm, PETSC_ERR_PLIB, "The padded circulant of the free compliance is not positive definite (smallest symbol %g): the free boundary's energy minimisation needs it", (double)lmin);
+  }
   /* the multiplier holds the symbol over n0 n1 (the transforms' scale): its inverse is scale^2/m */
   for (ptrdiff_t k0 = 0; k0 < nspec; k0++) {
     const PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1);
@@ -133,23 +140,36 @@ PetscErrorCode AdhPaddedMove_Private(Mat A, Vec x, Vec y, PetscBool reverse)
   Compliance  *c;
   AdhTransform t;
   PetscScalar *xa, *ya;
+  Vec          phys;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, &c));
-  t = c->t;
+  t    = c->t;
+  phys = t->toFFT ? t->xfft : x;
   if (t->toFFT && !reverse) {
     PetscCall(VecScatterBegin(t->toFFT, x, t->xfft, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(t->toFFT, x, t->xfft, INSERT_VALUES, SCATTER_FORWARD));
   }
-  PetscCall(VecGetArray(t->toFFT ? t->xfft : x, &xa));
-  PetscCall(VecGetArray(y, &ya));
+  /* the source read-only (a grid vector's state stays), the destination written */
+  if (reverse) {
+    PetscCall(VecGetArray(phys, &xa));
+    PetscCall(VecGetArrayRead(y, (const PetscScalar **)&ya));
+  } else {
+    PetscCall(VecGetArrayRead(phys, (const PetscScalar **)&xa));
+    PetscCall(VecGetArray(y, &ya));
+  }
   for (ptrdiff_t r = 0; r < t->phys_rows; r++)
     for (ptrdiff_t i = 0; i < c->Nx; i++) {
       if (reverse) xa[r * c->Nx + i] = ya[r * t->n1 + i];
       else ya[r * t->n1 + i] = xa[r * c->Nx + i];
     }
-  PetscCall(VecRestoreArray(y, &ya));
-  PetscCall(VecRestoreArray(t->toFFT ? t->xfft : x, &xa));
+  if (reverse) {
+    PetscCall(VecRestoreArrayRead(y, (const PetscScalar **)&ya));
+    PetscCall(VecRestoreArray(phys, &xa));
+  } else {
+    PetscCall(VecRestoreArray(y, &ya));
+    PetscCall(VecRestoreArrayRead(phys, (const PetscScalar **)&xa));
+  }
   if (t->toFFT && reverse) {
     PetscCall(VecScatterBegin(t->toFFT, t->xfft, x, INSERT_VALUES, SCATTER_REVERSE));
     PetscCall(VecScatterEnd(t->toFFT, t->xfft, x, INSERT_VALUES, SCATTER_REVERSE));

@@ -59,7 +59,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
     PetscInt         m = 0;
     if (!ops->shape) continue;
     PetscCallAbort(PETSC_COMM_SELF, ops->shape(s, &m, typed));
-    for (PetscInt j = 0; j < m; j++) shape[n++] = (Shape){typed[j].option, typed[j].type, typed[j].value, NULL};
+    for (PetscInt j = 0; j < m; j++) shape[n++] = (Shape){typed[j].option, typed[j].type, typed[j].value, typed[j].absent};
   }
   return n;
 }
@@ -259,9 +259,13 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
   for (PetscInt k = 0; k < n; k++) {
     PetscBool same = PETSC_FALSE;
     if (shape[k].type == PETSC_STRING) {
-      char *saved = NULL;
-      char  text[64];
-      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_STRING, NULL, &saved));
+      char     *saved = NULL;
+      char      text[64];
+      PetscBool has;
+      /* absent (a checkpoint written before the option existed): the value such checkpoints had */
+      PetscCall(PetscViewerHDF5HasAttribute(v, "/", shape[k].option, &has));
+      if (has) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", shape[k].option, PETSC_STRING, NULL, &saved));
+      else PetscCall(PetscStrallocpy(shape[k].absent ? (const char *)shape[k].absent : (const char *)shape[k].value, &saved));
       PetscCall(PetscStrcmp(saved, (const char *)shape[k].value, &same));
       PetscCall(PetscStrncpy(text, saved, sizeof(text)));
       PetscCall(PetscFree(saved));

@@ -23,6 +23,7 @@ typedef struct {
   const char   *option;
   PetscDataType type;
   const void   *value;
+  const void   *absent; /* the value of a checkpoint written before the option existed (NULL: this run's) */
 } AdhShapingOption;
 #define ADH_MAX_TYPE_SHAPES 4
 
@@ -95,7 +96,7 @@ typedef struct {
   PetscReal (*zone_gap)(const void *data, PetscReal dgamma);
   PetscReal (*peak)(const void *data, PetscReal dgamma);
   /* Optional, a finite-range criterion's: its Tabor parameter for a summit of radius R with work
-     of adhesion dgamma, and the parameter's name ("mu", "lambda") */
+     of adhesion dgamma, and the parameter's name ("Tabor's mu", "Maugis' lambda") */
   PetscReal (*tabor)(AdhSolver, PetscReal R, PetscReal dgamma);
   const char *tabor_name;
 } AdhCriterionOps;

@@ -243,3 +243,32 @@ def test_bad_input_is_one_line(args, says):
                         "-adh_steps", "1", *args], capture_output=True, text=True, timeout=60)
     assert r.returncode != 0 and says in r.stderr, r.stderr[-2000:]
     assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+def test_minimize_route_is_closer_to_maugis():
+    """-adh_dugdale_route minimize (the law's drop smoothed over 0.2 of the range, each state a
+    minimum of the energy) lands within 0.5% of Maugis' pull-off at lambda 1 on 64^2 (the zone 6
+    elements wide), where the fixed point of set updates is several times further off."""
+    serial_only()
+    P, _, _ = maugis_pulloff(1.0)
+    exact = -P * FSCALE
+    smooth = largest_tension(run(64, 1.0, dugdale_route="minimize")) / exact - 1
+    sharp = largest_tension(run(64, 1.0)) / exact - 1
+    say(f"\ndugdale lambda 1, 64^2: minimize {smooth:+.2%}, fixed point {sharp:+.2%} from Maugis")
+    assert abs(smooth) < 0.005 and abs(sharp) > 5 * abs(smooth)
+
+
+def test_minimize_route_refusals(tmp_path):
+    """Force control on the free boundary is refused with the minimise route (its steps are under
+    displacement control there), naming the options; a restart that changes the route is refused."""
+    serial_only()
+    base = [EXE, "-adh_n", "32", "-adh_gamma", str(GAMMA), "-adh_criterion", "dugdale", "-adh_dugdale_stress", str(s0_for(1.0)),
+            "-adh_path", "0.03,-0.05", "-adh_steps", "4"]
+    r = subprocess.run(base + ["-adh_dugdale_route", "minimize", "-adh_control", "force"], capture_output=True, text=True, timeout=60)
+    assert r.returncode != 0 and "-adh_dugdale_route minimize" in r.stderr and "-adh_boundary periodic" in r.stderr, r.stderr[-2000:]
+    ck = tmp_path / "ck.h5"
+    r = subprocess.run(base + ["-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = subprocess.run(base + ["-adh_dugdale_route", "minimize", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode != 0 and "-adh_dugdale_route" in r.stderr, r.stderr[-2000:]

@@ -35,8 +35,10 @@ struct _n_AdhMinimizer {
   Vec      pel, q;      /* the elastic pressure S u, and S t */
   Vec      r, rp, z, t; /* the gradient, its projection on the free points, the preconditioned one, the direction */
   Vec      work, pold; /* scratch, and the elastic pressure before a step */
+  Vec      u, rpold;   /* the elastic displacement v - b, and the previous projected gradient (Polak-Ribiere) */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
+  PetscReal dgamma;     /* the largest work of adhesion present (the scales of the law: its range and peak) */
   PetscInt its_total;   /* iterations over the run, for the view */
   PetscInt states;
 };
@@ -91,6 +93,8 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->t));
   PetscCall(VecDestroy(&m->work));
   PetscCall(VecDestroy(&m->pold));
+  PetscCall(VecDestroy(&m->u));
+  PetscCall(VecDestroy(&m->rpold));
   PetscCall(PetscFree(m->active));
   PetscCall(PetscFree(s->minimizer));
   PetscFunctionReturn(0);
@@ -122,6 +126,8 @@ static PetscErrorCode Create(AdhSolver s)
   PetscCall(VecDuplicate(m->v, &m->t));
   PetscCall(VecDuplicate(m->v, &m->work));
   PetscCall(VecDuplicate(m->v, &m->pold));
+  PetscCall(VecDuplicate(m->v, &m->u));
+  PetscCall(VecDuplicate(m->v, &m->rpold));
   PetscCall(PetscMalloc1(m->n + 1, &m->active));
   if (s->boundary == ADH_BOUNDARY_FREE) {
     PetscCall(PetscMalloc1(m->n + 1, &m->surface));
@@ -222,8 +228,8 @@ static PetscErrorCode ElasticPressure(AdhSolver s)
   AdhMinimizer m = s->minimizer;
 
   PetscFunctionBegin;
-  PetscCall(VecWAXPY(m->q, -1.0, m->b, m->v));
-  PetscCall(ApplyMeanFree(s, m->S, m->q, m->pel));
+  PetscCall(VecWAXPY(m->u, -1.0, m->b, m->v));
+  PetscCall(ApplyMeanFree(s, m->S, m->u, m->pel));
   PetscFunctionReturn(0);
 }
 
@@ -257,7 +263,7 @@ static PetscErrorCode EnergyChange(AdhSolver s, const PetscScalar *gamma, PetscR
 {
   AdhMinimizer       m = s->minimizer;
   const PetscScalar *va, *za, *pa, *oa;
-  const PetscReal    range = s->crops.zone_gap ? s->crops.zone_gap(s->crops.data, s->gamma) : 0.0;
+  const PetscReal    range = s->crops.zone_gap && s->minimizer->dgamma > 0 ? s->crops.zone_gap(s->crops.data, s->minimizer->dgamma) : 0.0;
   PetscReal          e = 0.0;
 
   PetscFunctionBegin;
@@ -424,7 +430,15 @@ static PetscErrorCode LineSearch(AdhSolver s, const PetscScalar *gamma, PetscRea
   PetscCall(VecGetArrayRead(m->v, &va));
   PetscCall(VecGetArrayRead(m->t, &ta));
   PetscCall(Slope(s, gamma, tr0, tq, 0.0, va, ta, &fa, &c0));
-  b = -tr0 / (c0 > 0 ? c0 : tq);
+  /* the Newton step, or without curvature along t (a concave law, a uniform t) one that moves the
+     fastest gap by the law's range */
+  if (c0 > 0) b = -tr0 / c0;
+  else if (tq > 0) b = -tr0 / tq;
+  else {
+    PetscReal tmax;
+    PetscCall(VecNorm(m->t, NORM_INFINITY, &tmax));
+    b = (s->crops.zone_gap && m->dgamma > 0 ? s->crops.zone_gap(s->crops.data, m->dgamma) : 1.0) / tmax;
+  }
   PetscCall(Slope(s, gamma, tr0, tq, b, va, ta, &fb, &curv));
   for (PetscInt k = 0; fb < 0 && k < 60; k++) { /* still going down: further */
     a  = b;
@@ -476,7 +490,7 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
      the rounding would lift the points at the wall off it */
   if (fixmean && neg) {
     PetscReal in = -1;
-    for (PetscInt it = 0; it < 200; it++) {
+    for (PetscInt it = 0;; it++) { /* the count of points above tau falls at each pass: at most N passes */
       PetscReal sums[2] = {0.0, 0.0};
       for (PetscInt k = 0; k < m->n; k++)
         if (it == 0 || PetscRealPart(ya[k]) > tau) {
@@ -510,16 +524,20 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   PetscScalar        sum;
   PetscReal          mu = 0.0, mean = s->mean_h - target, zrp_old = 0.0, rel = 1.0, scale;
   PetscInt           it, changed, since_exact = 0, restarts = 0, stalls = 0;
-  PetscBool          clamped, restart = PETSC_TRUE, steepest = PETSC_FALSE, down = PETSC_FALSE;
+  PetscBool          clamped, restart = PETSC_TRUE, steepest = PETSC_FALSE, down = PETSC_FALSE, stalled = PETSC_FALSE, stop = PETSC_FALSE;
+  PetscInt           failed = 0; /* 1: the iteration limit, 2: a stall down the gradient */
 
   PetscFunctionBegin;
   *none = PETSC_FALSE;
+  PetscCheck(!force || s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion %s: a cohesive law under -adh_control force needs -adh_boundary periodic (on the free boundary its steps are under displacement control)", s->criterion_type);
   if (!s->minimizer) PetscCall(Create(s));
   m = s->minimizer;
   if (s->gamma_field && m->surface) { /* the field on the variables, none on the padding */
     if (!m->gamma) PetscCall(VecDuplicate(m->v, &m->gamma));
     PetscCall(Move(s, s->gamma_field, m->gamma, 0.0, PETSC_FALSE));
   }
+  m->dgamma = s->gamma;
+  if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &m->dgamma));
   if (s->gamma_field) PetscCall(VecGetArrayRead(m->surface ? m->gamma : s->gamma_field, &gamma));
   /* from the last state's pressure (a force control's trial may have gone back to it): its
      displacement C p and the gaps v = u + h - d at the new d, the surfaces moved rigidly (under a
@@ -536,13 +554,14 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   PetscCall(ElasticPressure(s));
   PetscCall(Gradient(s, gamma, pbar));
   scale = 0.0;
-  if (s->crops.peak && s->adhesive && s->gamma > 0) scale = s->crops.peak(s->crops.data, s->gamma);
+  if (s->crops.peak && s->adhesive && m->dgamma > 0) scale = s->crops.peak(s->crops.data, m->dgamma);
   for (it = 0;; it++) {
     PetscReal rpn, pn, tr0, tq, alpha, zrp, beta = 0.0;
     PetscInt  restarts0;
     PetscScalar dot;
 
-    AdhSolverCheckStop_Private(s);
+    PetscCall(AdhSolverStopRequested_Private(s, &stop));
+    if (stop) break;
     PetscCall(Project(s, fixmean, &mu, &changed));
     /* the measure: the projected gradient against the pressure field (elastic plus mean) */
     PetscCall(VecNorm(m->rp, NORM_2, &rpn));
@@ -561,12 +580,15 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     if (force && s->crops.zone_gap) { /* no minimum under this force: the bodies fly apart */
       PetscReal vmin;
       PetscCall(VecMin(m->v, NULL, &vmin));
-      if (vmin > ADH_RUNAWAY * s->crops.zone_gap(s->crops.data, s->gamma)) {
+      if (m->dgamma > 0 && vmin > ADH_RUNAWAY * s->crops.zone_gap(s->crops.data, m->dgamma)) {
         *none = PETSC_TRUE;
         break;
       }
     }
-    PetscCheck(it < s->minimize_max_it, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stopped at %" PetscInt_FMT " iterations (-adh_minimize_max_it) with a relative projected gradient %g (-adh_minimize_rtol %g)", force ? "the force" : "d =", (double)target, it, (double)rel, (double)s->minimize_rtol);
+    if (it >= s->minimize_max_it) {
+      failed = 1;
+      break;
+    }
     /* the direction: preconditioned projected gradient, conjugated unless the held points changed */
     if (s->minimize_pc && !steepest) {
       PetscCall(Precondition(s, force, m->rp, m->z));
@@ -576,7 +598,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     zrp = PetscRealPart(dot);
     if (changed || restart) beta = 0.0;
     else {
-      PetscCall(VecDot(m->z, m->q, &dot)); /* q holds the previous projected gradient here */
+      PetscCall(VecDot(m->z, m->rpold, &dot));
       beta = PetscMax(0.0, (zrp - PetscRealPart(dot)) / zrp_old);
     }
     if (beta > 0) PetscCall(VecAYPX(m->t, beta, m->z));
@@ -589,6 +611,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     restarts0 = restarts;
     if (!(tr0 < 0)) { /* not downhill: the steepest descent, which pulls every free point at the wall away */
       PetscCall(VecAXPBY(m->t, -1.0, 0.0, m->rp));
+      PetscCall(KeepOffWall(s, fixmean, m->t));
       PetscCall(VecDot(m->t, m->r, &dot));
       tr0 = PetscRealPart(dot);
       restarts++;
@@ -606,6 +629,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
        is taken from the differences, exact where the energy itself has no digits left) */
     PetscCall(VecCopy(m->v, m->z)); /* z: the gaps before, pold: their elastic pressure */
     PetscCall(VecCopy(m->pel, m->pold));
+    stalled = PETSC_FALSE;
     for (PetscInt half = 0;; half++) {
       PetscReal dE;
       PetscCall(VecWAXPY(m->v, alpha, m->t, m->z));
@@ -617,7 +641,8 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
       if (half == ADH_MAX_HALVINGS) { /* no descent along t: stay, and go down the gradient next */
         PetscCall(VecCopy(m->z, m->v));
         PetscCall(VecCopy(m->pold, m->pel));
-        PetscCheck(!down, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stalled at a relative projected gradient %g (-adh_minimize_rtol %g): no step down the gradient lowers the energy", force ? "the force" : "d =", (double)target, (double)rel, (double)s->minimize_rtol);
+        if (down) failed = 2;
+        stalled = PETSC_TRUE;
         stalls++;
         restart = steepest = PETSC_TRUE;
         break;
@@ -625,17 +650,21 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
       alpha *= 0.5;
     }
     if (s->minimize_monitor) PetscCall(PetscPrintf(s->comm, "    %4" PetscInt_FMT " relative projected gradient %.6e, step %.3e%s, %" PetscInt_FMT " points changed at the wall, beta %.3g\n", it, (double)rel, (double)alpha, clamped ? " (projected)" : "", changed, (double)beta));
-    since_exact = clamped ? 0 : since_exact + 1;
+    if (failed) break;
+    if (!stalled) since_exact = clamped ? 0 : since_exact + 1; /* a stall went back to the pressure before */
     PetscCall(Gradient(s, gamma, pbar));
     if (since_exact >= 50) { /* updates drift: recompute now and then */
       PetscCall(ElasticPressure(s));
       PetscCall(Gradient(s, gamma, pbar));
       since_exact = 0;
     }
-    PetscCall(VecCopy(m->rp, m->q)); /* the previous projected gradient, for Polak-Ribiere */
+    PetscCall(VecCopy(m->rp, m->rpold)); /* the previous projected gradient, for Polak-Ribiere */
     if (clamped) restart = PETSC_TRUE;
   }
   if (gamma) PetscCall(VecRestoreArrayRead(m->surface ? m->gamma : s->gamma_field, &gamma));
+  if (stop) PetscFunctionReturn(PETSC_ERR_SIG); /* a signal asks every rank to stop: the step is abandoned */
+  PetscCheck(failed != 1, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stopped at %" PetscInt_FMT " iterations (-adh_minimize_max_it) with a relative projected gradient %g (-adh_minimize_rtol %g)", force ? "the force" : "d =", (double)target, it, (double)rel, (double)s->minimize_rtol);
+  PetscCheck(failed != 2, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stalled at a relative projected gradient %g (-adh_minimize_rtol %g): no step down the gradient lowers the energy", force ? "the force" : "d =", (double)target, (double)rel, (double)s->minimize_rtol);
   /* the state: the gaps, the pressure (elastic plus mean), the contact set where the gap is 0 */
   PetscCall(Move(s, s->g, m->v, 0.0, PETSC_TRUE));
   PetscCall(Move(s, s->p, m->pel, 0.0, PETSC_TRUE));

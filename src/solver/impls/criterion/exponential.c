@@ -185,7 +185,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
   s->crops.zone_gap            = ZoneGap_Exponential;
   s->crops.peak                = Peak_Exponential;
   s->crops.tabor               = Tabor_Exponential;
-  s->crops.tabor_name          = "mu";
+  s->crops.tabor_name          = "Tabor's mu";
   s->crops.base.setfromoptions = SetFromOptions_Exponential;
   s->crops.base.view           = View_Exponential;
   s->crops.base.setup          = SetUp_Exponential;

@@ -47,7 +47,7 @@ const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOU
 
 /* Forward transform of the array, the multiplier, backward transform: in double, or in single
    precision on the float twin (MatAdhComplianceSetSinglePrecision). */
-static PetscErrorCode Convolve(Mat K, Compliance *c, PetscBool single)
+PetscErrorCode AdhComplianceConvolve_Private(Mat K, Compliance *c, PetscBool single)
 {
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
@@ -87,7 +87,7 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
     PetscCall(PetscArrayzero(c->t->data + r * c->t->stride + c->Nx, c->t->stride - c->Nx));
   }
   PetscCall(VecRestoreArrayRead(c->t->toFFT ? c->t->xfft : x, &xa));
-  PetscCall(Convolve(K, c, PETSC_FALSE));
+  PetscCall(AdhComplianceConvolve_Private(K, c, PETSC_FALSE));
   PetscCall(VecGetArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
   for (r = 0; r < c->t->phys_rows; r++) PetscCall(PetscArraycpy(ya + r * c->Nx, c->t->data + r * c->t->stride, c->Nx));
   PetscCall(VecRestoreArrayWrite(c->t->toFFT ? c->t->xfft : y, &ya));
@@ -245,7 +245,7 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
     else data[local[k] + r * (c->t->stride - c->Nx)] = PetscRealPart(xa[k]);
   }
   PetscCall(VecRestoreArrayRead(xC, &xa));
-  PetscCall(Convolve(K, c, c->single));
+  PetscCall(AdhComplianceConvolve_Private(K, c, c->single));
   PetscCall(VecGetArrayWrite(yC, &ya));
   for (k = 0, r = 0; k < n; k++) {
     while (local[k] >= (r + 1) * c->Nx) r++;
@@ -288,7 +288,7 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode MatDestroy_Compliance(Mat K)
+PetscErrorCode AdhComplianceMatDestroy_Private(Mat K)
 {
   Compliance *c;
 
@@ -347,7 +347,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCall(MatShellSetOperation(*K, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_GET_DIAGONAL, (void (*)(void))MatGetDiagonal_Compliance));
   PetscCall(MatShellSetOperation(*K, MATOP_VIEW, (void (*)(void))MatView_Compliance));
-  PetscCall(MatShellSetOperation(*K, MATOP_DESTROY, (void (*)(void))MatDestroy_Compliance));
+  PetscCall(MatShellSetOperation(*K, MATOP_DESTROY, (void (*)(void))AdhComplianceMatDestroy_Private));
   PetscCall(MatSetBlockSizes(*K, c->Nx, c->Nx)); /* a row per block, as the grid vectors */
   PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));

@@ -106,6 +106,10 @@ PETSC_INTERN PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance 
    compliance K (inverse false) or its inverse, on vectors of the padded slab layout; their
    multiplies; which local entries are the grid's points; and the moves of a grid vector into the
    physical entries of a padded one (reverse: back). */
+/* The transform array's forward FFT, the multiplier and the backward FFT, counted and logged; and
+   the destroy of an operator of this context (compliance.c, shared with padded.c). */
+PETSC_INTERN PetscErrorCode AdhComplianceConvolve_Private(Mat K, Compliance *c, PetscBool single);
+PETSC_INTERN PetscErrorCode AdhComplianceMatDestroy_Private(Mat K);
 PETSC_INTERN PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A);
 PETSC_INTERN PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count);
 PETSC_INTERN PetscErrorCode AdhPaddedGetPhysicalMask_Private(Mat A, char mask[]);

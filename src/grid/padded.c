@@ -26,48 +26,13 @@ static PetscErrorCode MatMult_Padded(Mat A, Vec x, Vec y)
     for (ptrdiff_t i = 0; i < t->n1; i++) t->data[r * t->stride + i] = PetscRealPart(xa[r * t->n1 + i]);
   }
   PetscCall(VecRestoreArrayRead(x, &xa));
-  fftw_execute(t->forward);
-  {
-    fftw_complex *spec = (fftw_complex *)t->data;
-    if (t->serial)
-      for (ptrdiff_t k0 = 0; k0 < t->n0; k0++) {
-        const double *m = c->multiplier + (k0 <= t->n0 / 2 ? k0 : t->n0 - k0) * t->local_n1;
-        for (ptrdiff_t a = 0; a < t->local_n1; a++) {
-          spec[k0 * t->local_n1 + a][0] *= m[a];
-          spec[k0 * t->local_n1 + a][1] *= m[a];
-        }
-      }
-    else
-      for (ptrdiff_t a = 0; a < t->local_n1; a++) {
-        const double *m = c->multiplier + a * c->nhalf;
-        for (ptrdiff_t k0 = 0; k0 < t->n0; k0++) {
-          const double mk = m[k0 <= t->n0 / 2 ? k0 : t->n0 - k0];
-          spec[a * t->n0 + k0][0] *= mk;
-          spec[a * t->n0 + k0][1] *= mk;
-        }
-      }
-  }
-  fftw_execute(t->backward);
-  c->nmult++;
+  PetscCall(AdhComplianceConvolve_Private(A, c, PETSC_FALSE));
   PetscCall(VecGetArrayWrite(y, &ya));
   for (ptrdiff_t r = 0; r < t->local_n0; r++) {
     for (ptrdiff_t i = 0; i < t->n1; i++) ya[r * t->n1 + i] = t->data[r * t->stride + i];
   }
   PetscCall(VecRestoreArrayWrite(y, &ya));
-  PetscCall(PetscLogFlops(4.0 * t->local_n1 * t->n0));
   PetscCall(PetscLogEventEnd(ADH_ComplianceMult, A, x, y, 0));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode MatDestroy_Padded(Mat A)
-{
-  Compliance *c;
-
-  PetscFunctionBegin;
-  PetscCall(MatShellGetContext(A, &c));
-  PetscCall(AdhTransformRelease_Private(&c->t));
-  PetscCall(PetscFree(c->multiplier));
-  PetscCall(PetscFree(c));
   PetscFunctionReturn(0);
 }
 
@@ -104,7 +69,7 @@ PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A)
   PetscCall(MatCreateShell(c->comm, c->t->local_n0 * c->t->n1, c->t->local_n0 * c->t->n1, c->t->n0 * c->t->n1, c->t->n0 * c->t->n1, c, A));
   PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_Padded));
   PetscCall(MatShellSetOperation(*A, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMult_Padded));
-  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_Padded));
+  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))AdhComplianceMatDestroy_Private));
   PetscCall(MatSetOption(*A, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetUp(*A));
   PetscFunctionReturn(0);

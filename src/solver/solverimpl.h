@@ -108,6 +108,7 @@ PETSC_INTERN PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver, P
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver, PetscViewer);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeMultCount_Private(AdhSolver, PetscInt *);
+PETSC_INTERN PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver);
 
 /* What a contact-set predictor does (impls/predictor/): guess a step's set and pressure without
    adhesion, at an indentation or carrying a force (force true); NULL predict: no guess. */

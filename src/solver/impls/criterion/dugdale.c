@@ -268,7 +268,7 @@ static PetscErrorCode Memory_Dugdale(AdhSolver s, PetscLogDouble *per_point, Pet
 {
   PetscFunctionBegin;
   *per_point = 2.0 * sizeof(PetscScalar) + 1.0;
-  if (((Dugdale *)s->crops.data)->route == ADH_DUGDALE_MINIMIZE) *per_point = (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (10.0 * sizeof(PetscScalar) + 2.0);
+  if (((Dugdale *)s->crops.data)->route == ADH_DUGDALE_MINIMIZE) *per_point = AdhSolverMinimizeMemory_Private(s);
   *per_rank  = 0.0;
   PetscFunctionReturn(0);
 }

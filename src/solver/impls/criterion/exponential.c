@@ -141,12 +141,11 @@ static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The minimisation's vectors: ten of its variables and a byte each, the variables a point on a
-   periodic cell and four on the free boundary's padded grid (with two padded operators). */
+/* The minimisation's vectors (AdhSolverMinimizeMemory_Private). */
 static PetscErrorCode Memory_Exponential(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
   PetscFunctionBegin;
-  *per_point = (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (10.0 * sizeof(PetscScalar) + 2.0);
+  *per_point = AdhSolverMinimizeMemory_Private(s);
   *per_rank  = 0.0;
   PetscFunctionReturn(0);
 }

@@ -2,6 +2,7 @@
    Every built-in indenter has its apex on the centre of element (Nx/2, Ny/2). A topography
    (from a file through fieldfile.c, or a user's Vec) is a height map z or the gap h itself. */
 #include "geometry/indenter.h"
+#include "sys/sysimpl.h"
 
 const char *const AdhIndenterTypes[]    = {"sphere", "punch", "cone", "file", "rough", "array", "AdhIndenterType", "ADH_INDENTER_", NULL};
 const char *const AdhTopographyKinds[] = {"height", "gap", "AdhTopographyKind", "ADH_TOPOGRAPHY_", NULL};
@@ -68,9 +69,12 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscFunctionBegin;
   PetscOptionsBegin(comm, prefix, "adhbem indenter", "AdhSolver");
   PetscCall(PetscOptionsEnum("-adh_indenter", "Indenter shape (array: a profile given through the API)", "AdhSolver", AdhIndenterTypes, (PetscEnum)ind->type, (PetscEnum *)&ind->type, &typeset));
-  PetscCall(PetscOptionsReal("-adh_radius", "Sphere radius R (h = r^2/2R)", "AdhSolver", ind->radius, &ind->radius, NULL));
-  PetscCall(PetscOptionsReal("-adh_punch_radius", "Flat punch radius a", "AdhSolver", ind->punch_radius, &ind->punch_radius, NULL));
-  PetscCall(PetscOptionsReal("-adh_cone_slope", "Cone slope (h = slope r)", "AdhSolver", ind->cone_slope, &ind->cone_slope, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_radius", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_radius", "Sphere radius R (h = r^2/2R)", "AdhSolver", ind->radius, &ind->radius, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_punch_radius", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_punch_radius", "Flat punch radius a", "AdhSolver", ind->punch_radius, &ind->punch_radius, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_cone_slope", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_cone_slope", "Cone slope (h = slope r)", "AdhSolver", ind->cone_slope, &ind->cone_slope, NULL));
   PetscCall(PetscOptionsString("-adh_topography", "Topography file (implies -adh_indenter file): .npy (Ny, Nx) float64/float32, or HDF5", "AdhSolver", ind->topography, ind->topography, sizeof(ind->topography), &topo));
   PetscCall(PetscOptionsString("-adh_topography_dataset", "Dataset name inside an HDF5 topography file", "AdhSolver", ind->dataset, ind->dataset, sizeof(ind->dataset), NULL));
   PetscCall(PetscOptionsEnum("-adh_topography_kind", "What the topography holds: height z of the surface as measured (profile h = max(z) - z, the highest peak touches at d = 0) or gap h itself", "AdhSolver", AdhTopographyKinds, (PetscEnum)ind->kind, (PetscEnum *)&ind->kind, NULL));
@@ -79,8 +83,8 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   if (topo && !typeset && ind->topography[0]) ind->type = ADH_INDENTER_FILE;
   /* read always, so that -help lists them; they shape only a rough indenter */
   PetscCall(AdhSurfaceSetFromOptions(comm, prefix, &ind->surface));
-  PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive, got %g", (double)ind->radius);
-  PetscCheck(ind->type != ADH_INDENTER_PUNCH || ind->punch_radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive, got %g", (double)ind->punch_radius);
-  PetscCheck(ind->type != ADH_INDENTER_CONE || ind->cone_slope > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive, got %g", (double)ind->cone_slope);
+  PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive and finite, got %g", (double)ind->radius);
+  PetscCheck(ind->type != ADH_INDENTER_PUNCH || (ind->punch_radius > 0 && PetscIsNormalReal(ind->punch_radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive and finite, got %g", (double)ind->punch_radius);
+  PetscCheck(ind->type != ADH_INDENTER_CONE || (ind->cone_slope > 0 && PetscIsNormalReal(ind->cone_slope)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive and finite, got %g", (double)ind->cone_slope);
   PetscFunctionReturn(0);
 }

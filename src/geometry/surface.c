@@ -22,6 +22,7 @@
 #include <fftw3-mpi.h>
 #include <stdint.h>
 #include "grid/gridimpl.h"
+#include "sys/sysimpl.h"
 
 /* A mode whose wavenumber lies on the cut-off to this relative rounding counts as inside. */
 #define EDGE_RTOL 1e-9
@@ -93,14 +94,21 @@ PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhS
   s->rms_slope          = PETSC_DEFAULT;
   s->seed               = 1;
   PetscOptionsBegin(comm, prefix, "adhbem rough surface (-adh_indenter rough)", "AdhSurface");
-  PetscCall(PetscOptionsReal("-adh_hurst", "Hurst exponent H in (0, 1]: C(q) ~ q^(-2(1+H)) between roll-off and cut-off", "AdhSurfaceGenerate", s->hurst, &s->hurst, NULL));
-  PetscCall(PetscOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default -2: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", s->rolloff_wavelength, &s->rolloff_wavelength, NULL));
-  PetscCall(PetscOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default -2: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", s->cutoff_wavelength, &s->cutoff_wavelength, NULL));
-  PetscCall(PetscOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default -2: not set; not with -adh_rms_slope)", "AdhSurfaceGenerate", s->rms_height, &s->rms_height, &seth));
-  PetscCall(PetscOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean (grad z)^2), defined spectrally from the Fourier coefficients (sum of q^2 abs(z_q)^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
+  PetscCall(AdhOptionsCheckNumber("-adh_hurst", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_hurst", "Hurst exponent H in (0, 1]: C(q) ~ q^(-2(1+H)) between roll-off and cut-off", "AdhSurfaceGenerate", s->hurst, &s->hurst, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_rolloff_wavelength", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default -2: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", s->rolloff_wavelength, &s->rolloff_wavelength, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_cutoff_wavelength", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default -2: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", s->cutoff_wavelength, &s->cutoff_wavelength, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_rms_height", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default -2: not set; not with -adh_rms_slope)", "AdhSurfaceGenerate", s->rms_height, &s->rms_height, &seth));
+  PetscCall(AdhOptionsCheckNumber("-adh_rms_slope", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean (grad z)^2), defined spectrally from the Fourier coefficients (sum of q^2 abs(z_q)^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
+  PetscCall(AdhOptionsCheckNumber("-adh_seed", ADH_NUMBER_INT));
   PetscCall(PetscOptionsInt("-adh_seed", "Random seed: each Fourier coefficient is a hash of (seed, kx, ky)", "AdhSurfaceGenerate", s->seed, &s->seed, NULL));
   PetscOptionsEnd();
   PetscCheck(!(seth && sets), comm, PETSC_ERR_ARG_INCOMP, "-adh_rms_height and -adh_rms_slope: give one of them, not both");
+  PetscCheck(s->seed >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_seed must be >= 0, got %" PetscInt_FMT, s->seed);
   /* Checked here as well as in AdhSurfaceGenerate: a given value must not pass as PETSC_DEFAULT. */
   PetscCheck(!seth || (s->rms_height > 0 && PetscIsNormalReal(s->rms_height)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_height must be positive and finite, got %g", (double)s->rms_height);
   PetscCheck(!sets || (s->rms_slope > 0 && PetscIsNormalReal(s->rms_slope)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_slope must be positive and finite, got %g", (double)s->rms_slope);

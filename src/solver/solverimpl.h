@@ -32,7 +32,7 @@ typedef struct {
    type's data is its own (the kind's data pointer), made by its create function and freed by its
    destroy. */
 typedef struct {
-  PetscErrorCode (*setfromoptions)(AdhSolver, PetscOptionItems *); /* its options, in a -help group of its own */
+  PetscErrorCode (*setfromoptions)(AdhSolver, AdhOptionItems); /* its options, in a -help group of its own */
   PetscErrorCode (*view)(AdhSolver, PetscViewer); /* ASCII: its lines of AdhSolverView; HDF5: its attributes in the results file */
   PetscErrorCode (*setup)(AdhSolver);             /* at the solver's set-up, after the operators */
   PetscErrorCode (*destroy)(AdhSolver);           /* frees its data */
@@ -104,7 +104,7 @@ typedef struct {
 /* The energy minimisation of a step under a cohesive law (interface/minimize.c): its options, in
    the law's -help group, and its data (made at the first step). */
 typedef struct _n_AdhMinimizer *AdhMinimizer;
-PETSC_INTERN PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver, PetscOptionItems *);
+PETSC_INTERN PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver, AdhOptionItems);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver, PetscViewer);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeMultCount_Private(AdhSolver, PetscInt *);

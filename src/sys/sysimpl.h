@@ -4,6 +4,7 @@
 #define ADHBEM_SYSIMPL_H
 #include <petscksp.h>
 #include "adhbem.h"
+#include "sys/petsccompat.h"
 
 /* Every option under prefix that starts with adh_ and that no part of adhbem reads is an error
    naming the nearest known option. */
@@ -11,6 +12,16 @@ PETSC_INTERN PetscErrorCode AdhCheckOptions_Private(MPI_Comm, const char prefix[
 /* After ksp's set-up from the options: an -adh_ksp_ or -adh_pc_ option under prefix that neither
    it nor a solve reads is an error naming it. */
 PETSC_INTERN PetscErrorCode AdhCheckKSPOptions_Private(KSP, const char prefix[], const char which[]);
+
+/* The value given to a numeric option (optionvalues.c) is a number of its kind: an integer within
+   PetscInt, or a real (inf allowed, NaN not), each item of a comma-separated list; else an error
+   naming the option. Called before PETSc reads the option, inside an options block: */
+typedef enum {
+  ADH_NUMBER_INT,
+  ADH_NUMBER_REAL
+} AdhNumberKind;
+PETSC_INTERN PetscErrorCode AdhOptionsCheckNumber_Private(MPI_Comm, PetscOptions, const char prefix[], const char name[], AdhNumberKind);
+#define AdhOptionsCheckNumber(name, kind) AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, name, kind)
 
 /* The types of one kind, by name (registry.c): option is the option that chooses one
    ("-adh_criterion"), what says what they are ("detachment criterion"). */

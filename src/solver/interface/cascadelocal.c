@@ -141,8 +141,7 @@ PetscErrorCode AdhSolverDestroyCascadeLocal_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(DestroyWindow(s));
   PetscCall(KSPDestroy(&s->local_ksp));
-  if (s->local_converged) PetscCall(KSPConvergedDefaultDestroy(s->local_converged));
-  s->local_converged = NULL;
+  if (s->local_converged) PetscCall(AdhKSPConvergedDefaultDestroy(&s->local_converged));
   PetscFunctionReturn(0);
 }
 

@@ -132,6 +132,21 @@ static PetscErrorCode CheckMemory(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* Refuse a path whose curve (a record a state, on every rank) PetscInt cannot count or no memory
+   holds: -adh_steps 2000000000 would otherwise run until the job's time limit. */
+static PetscErrorCode CheckPath(AdhSolver s)
+{
+  const PetscLogDouble states = (PetscLogDouble)PetscMax(s->npath - 1, 1) * (PetscLogDouble)s->steps + 1;
+  const PetscLogDouble bytes  = states * (PetscLogDouble)sizeof(AdhState);
+  long                 pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+
+  PetscFunctionBegin;
+  PetscCheck(states <= (PetscLogDouble)PETSC_MAX_INT, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps: %" PetscInt_FMT " steps on each of the %" PetscInt_FMT " legs of -adh_path make %.3g states, more than this PETSc build's %d-bit indices count", s->steps, s->npath - 1, (double)states, (int)(8 * sizeof(PetscInt)));
+  if (!s->memory_check || pages <= 0 || page <= 0) PetscFunctionReturn(0);
+  PetscCheck(bytes <= (PetscLogDouble)pages * (PetscLogDouble)page, s->comm, PETSC_ERR_MEM, "-adh_steps: %" PetscInt_FMT " steps on each of the %" PetscInt_FMT " legs of -adh_path make %.3g states, whose curve (%d bytes a state, on every rank) needs %.3g GB, more than this node's %.3g GB (-adh_memory_check 0 skips this check)", s->steps, s->npath - 1, (double)states, (int)sizeof(AdhState), bytes / 1e9, (double)pages * (double)page / 1e9);
+  PetscFunctionReturn(0);
+}
+
 /* The indices first: no option gets past them, and a user who spread the run over more nodes for
    its memory would only then learn that it needs another build. */
 PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
@@ -139,5 +154,6 @@ PetscErrorCode AdhSolverCheckResources_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(CheckIndices(s));
   PetscCall(CheckMemory(s));
+  PetscCall(CheckPath(s));
   PetscFunctionReturn(0);
 }

@@ -28,6 +28,7 @@
 .seealso: `AdhSolverSetControlType()`, `ADHCONTROLDISPLACEMENT`, `AdhSolverStep()`, `AdhSolverIsPulledOff()`
 M*/
 #include "solver/solverimpl.h"
+#include "sys/sysimpl.h"
 
 /* A copy of the contact state before a step, to go back to when the step finds no equilibrium
    (pull-off). */
@@ -50,12 +51,13 @@ typedef struct {
   SavedState previous;     /* the state before the current step */
 } Force;
 
-static PetscErrorCode SetFromOptions_Force(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode SetFromOptions_Force(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   Force *f = (Force *)s->cops.data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "ADHCONTROLFORCE", f->pulloff_rtol, &f->pulloff_rtol, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_pulloff_rtol", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "ADHCONTROLFORCE", f->pulloff_rtol, &f->pulloff_rtol, NULL));
   PetscCheck(f->pulloff_rtol > 0 && f->pulloff_rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)f->pulloff_rtol);
   PetscFunctionReturn(0);
 }

@@ -43,6 +43,7 @@
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
 M*/
 #include "solver/solverimpl.h"
+#include "sys/sysimpl.h"
 
 /* How a step finds the zone: the energy minimisation of the law (its traction's drop at the range
    smoothed over a share of it), or the fixed point of the set updates. */
@@ -183,15 +184,17 @@ static PetscErrorCode Begin_Dugdale(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   Dugdale *dd = (Dugdale *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_dugdale_stress", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
   PetscCheck(dd->s0 == 0 || (dd->s0 > 0 && !PetscIsInfOrNanReal(dd->s0)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_stress must be > 0 and finite, got %g", (double)dd->s0);
   PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
-  PetscCall(PetscOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_dugdale_smoothing", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
   PetscCheck(dd->smoothing > 0 && dd->smoothing < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_smoothing must lie in (0, 1), got %g", (double)dd->smoothing);
   /* the route decides the kind of step: a law minimises, none updates sets */
   s->crops.law      = dd->route == ADH_DUGDALE_MINIMIZE ? Law_Dugdale : NULL;
@@ -205,7 +208,7 @@ static PetscErrorCode SetUp_Dugdale(AdhSolver s)
   Dugdale *dd = (Dugdale *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
+  PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
   PetscCheck(dd->route != ADH_DUGDALE_MINIMIZE || s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_dugdale_route minimize with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control (or use -adh_dugdale_route fixed-point)");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion dugdale, whose cohesive stress is -adh_dugdale_stress");
   PetscCall(Begin_Dugdale(s));

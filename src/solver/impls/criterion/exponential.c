@@ -31,6 +31,7 @@
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONDUGDALE`, `ADHCRITERIONCRACKCLOSURE`
 M*/
 #include "solver/solverimpl.h"
+#include "sys/sysimpl.h"
 
 typedef struct {
   PetscReal rho; /* -adh_exponential_range */
@@ -79,12 +80,13 @@ static PetscErrorCode Evaluate_Exponential(AdhSolver s, PetscBool detach, PetscI
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetFromOptions_Exponential(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode SetFromOptions_Exponential(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   Exponential *ex = (Exponential *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsReal("-adh_exponential_range", "exponential: the range rho of the attraction (dgamma/rho) exp(-g/rho) at gap g (required with -adh_criterion exponential)", "ADHCRITERIONEXPONENTIAL", ex->rho, &ex->rho, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_exponential_range", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_exponential_range", "exponential: the range rho of the attraction (dgamma/rho) exp(-g/rho) at gap g (required with -adh_criterion exponential)", "ADHCRITERIONEXPONENTIAL", ex->rho, &ex->rho, NULL));
   PetscCheck(ex->rho == 0 || (ex->rho > 0 && !PetscIsInfOrNanReal(ex->rho)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_exponential_range must be > 0 and finite, got %g", (double)ex->rho);
   PetscFunctionReturn(0);
 }
@@ -94,7 +96,8 @@ static PetscErrorCode SetUp_Exponential(AdhSolver s)
   Exponential *ex = (Exponential *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCheck(ex->rho > 0, s->comm, PETSC_ERR_ARG_WRONGSTATE, "-adh_criterion exponential needs the range: give -adh_exponential_range RHO (> 0)");
+  PetscCheck(ex->rho > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_criterion exponential needs the range: give -adh_exponential_range RHO (> 0)");
+  PetscCheck(ex->rho < PetscMax(s->grid->Lx, s->grid->Ly), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_exponential_range %g is not below the cell's side %g: the law's range must be short against the geometry", (double)ex->rho, (double)PetscMax(s->grid->Lx, s->grid->Ly));
   PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion exponential with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion exponential, whose largest tension is dgamma/rho");
   PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion exponential: the hard wall is the bound of its energy minimisation");

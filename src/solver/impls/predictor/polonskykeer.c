@@ -20,6 +20,7 @@
 .seealso: `AdhSolverSetPredictorType()`, `ADHPREDICTORNONE`
 M*/
 #include "solver/solverimpl.h"
+#include "sys/sysimpl.h"
 
 /* The pressure p >= 0 with the gap g = K p + h - d >= 0 closed where p > 0, on the whole grid,
    carrying F (force: d is the gap's mean on the set, and s->d is set to it) or at d; the contact
@@ -271,14 +272,18 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetFromOptions_PolonskyKeer(AdhSolver s, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode SetFromOptions_PolonskyKeer(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   PolonskyKeerData *pk = (PolonskyKeerData *)s->pops.data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "ADHPREDICTORPOLONSKYKEER", pk->rtol, &pk->rtol, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_predictor_rtol", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "ADHPREDICTORPOLONSKYKEER", pk->rtol, &pk->rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "ADHPREDICTORPOLONSKYKEER", pk->fourier, &pk->fourier, NULL));
+  PetscCall(AdhOptionsCheckNumber("-adh_predictor_max_it", ADH_NUMBER_INT));
   PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "ADHPREDICTORPOLONSKYKEER", pk->max_it, &pk->max_it, NULL));
+  PetscCheck(pk->rtol > 0 && pk->rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_predictor_rtol must lie in (0, 1), got %g", (double)pk->rtol);
+  PetscCheck(pk->max_it >= 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_predictor_max_it must be at least 1, got %" PetscInt_FMT, pk->max_it);
   PetscFunctionReturn(0);
 }
 

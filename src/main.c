@@ -68,19 +68,64 @@ static const char *LauncherRank(void)
   return NULL;
 }
 
-/* -options_file names a file that is not there: one line, not PETSc's dump from within its
-   initialisation (printed by the first rank; every rank stops before MPI starts). */
+/* Why an options file is not one PETSc reads (NULL when it is), by PETSc's rules: '#' starts a
+   comment, and the first word of every other line that is not blank is an option (-name) or
+   "alias". PETSc finds the same inside its initialisation and prints its traceback and MPI's
+   abort banner. */
+static const char *OptionsFileFault(const char *file, char why[], size_t len)
+{
+  FILE  *f = fopen(file, "rb");
+  char   line[4096];
+  size_t n = 0;
+  int    c, number = 1;
+
+  if (!f) return "no such file (or not readable)";
+  do {
+    c = fgetc(f);
+    if (c != EOF && c != '\n') {
+      if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+        snprintf(why, len, "line %d holds control bytes: not a text file of options", number);
+        break;
+      }
+      if (n + 1 < sizeof(line)) line[n++] = (char)c;
+      continue;
+    }
+    line[n] = 0;
+    {
+      char *word, *end;
+      if ((end = strchr(line, '#'))) *end = 0;
+      for (char *t = line; *t; t++)
+        if (*t == '\t' || *t == '\r') *t = ' ';
+      for (word = line; *word == ' '; word++) continue;
+      for (end = word; *end && *end != ' '; end++) continue;
+      *end = 0;
+      if (*word && word[0] != '-' && strcasecmp(word, "alias")) {
+        snprintf(why, len, "line %d: '%.60s' is not an option (each line is -name [value]; # starts a comment)%s%.60s%s", number, word, strncmp(word, "adh_", 4) ? "" : "; did you mean -", strncmp(word, "adh_", 4) ? "" : word, strncmp(word, "adh_", 4) ? "" : "?");
+        break;
+      }
+    }
+    n = 0;
+    number++;
+  } while (c != EOF);
+  fclose(f);
+  return why[0] ? why : NULL;
+}
+
+/* -options_file names a file that is not there, or that PETSc would refuse: one line, not PETSc's
+   dump from within its initialisation (printed by the first rank; every rank stops before MPI
+   starts). */
 static int CheckOptionsFiles(int argc, char **argv)
 {
   const char *rank = LauncherRank();
 
   for (int k = 1; k < argc; k++) {
-    const char *file = k + 1 < argc ? argv[k + 1] : NULL;
+    const char *file = k + 1 < argc ? argv[k + 1] : NULL, *fault = NULL;
+    char        why[256] = "";
     if (strcmp(argv[k], "-options_file")) continue;
-    if (file && file[0] != '-' && !access(file, R_OK)) continue;
+    if (file && file[0] != '-' && !(fault = OptionsFileFault(file, why, sizeof(why)))) continue;
     if (!rank || !strcmp(rank, "0")) {
       if (!file || file[0] == '-') fprintf(stderr, "adhbem: error: -options_file needs a file name\n");
-      else fprintf(stderr, "adhbem: error: -options_file %s: no such file (or not readable)\n", file);
+      else fprintf(stderr, "adhbem: error: -options_file %s: %s\n", file, fault);
     }
     return 1;
   }

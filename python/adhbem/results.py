@@ -74,7 +74,11 @@ class Results:
                 self.params.setdefault("path", self.curve.pop("path"))
         except (OSError, KeyError) as e:
             if not os.path.exists(journal):
-                raise
+                if self._file is not None:
+                    self._file.close()
+                if isinstance(e, KeyError):
+                    raise ValueError(f"{self.path}: not an adhbem results file (it has no {e} of a curve)") from None
+                raise OSError(f"{self.path}: not a readable HDF5 file (truncated or damaged?): {e}") from None
             warnings.warn(f"{self.path} cannot be read ({e}): the curve comes from {journal}, "
                           "without fields or parameters", stacklevel=3)
             if self._file is not None:

@@ -139,10 +139,16 @@ static PetscErrorCode HDF5Load(AdhGrid grid, const char option[], const char pat
   PetscBool   has;
   const char *name;
   char        oldname[256];
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
-  PetscCall(PetscViewerHDF5Open(grid->comm, path, FILE_MODE_READ, &viewer));
-  PetscCall(PetscViewerHDF5HasDataset(viewer, dataset, &has));
+  /* a truncated or damaged file fails inside HDF5, whose message names neither option nor file */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = PetscViewerHDF5Open(grid->comm, path, FILE_MODE_READ, &viewer);
+  if (!ierr) ierr = PetscViewerHDF5HasDataset(viewer, dataset, &has);
+  if (ierr) (void)PetscViewerDestroy(&viewer); /* HDF5 cannot flush the file it did not open: ignored */
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, grid->comm, PETSC_ERR_FILE_READ, "%s: %s is not a readable HDF5 file (truncated or damaged?)", option, path);
   if (!has) {
     PetscCall(PetscViewerDestroy(&viewer));
     SETERRQ(grid->comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %s has no dataset '%s' (set %s_dataset)", option, path, dataset, option);
@@ -168,9 +174,12 @@ static PetscErrorCode HDF5Load(AdhGrid grid, const char option[], const char pat
   PetscCall(PetscObjectGetName((PetscObject)v, &name));
   PetscCall(PetscStrncpy(oldname, name, sizeof(oldname)));
   PetscCall(PetscObjectSetName((PetscObject)v, dataset[0] == '/' ? dataset + 1 : dataset));
-  PetscCall(VecLoad(v, viewer));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = VecLoad(v, viewer);
+  PetscCall(PetscPopErrorHandler());
   PetscCall(PetscObjectSetName((PetscObject)v, oldname));
   PetscCall(PetscViewerDestroy(&viewer));
+  PetscCheck(!ierr, grid->comm, PETSC_ERR_FILE_READ, "%s: dataset '%s' in %s cannot be read (truncated or damaged?)", option, dataset, path);
   PetscFunctionReturn(0);
 }
 

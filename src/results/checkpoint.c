@@ -8,6 +8,7 @@
    writing leaves the previous checkpoint whole. A restart continues the path after the recorded
    state; with deterministic FFT plans (-adh_fftw_planner estimate) on the same number of ranks
    the curve is the uninterrupted run's to the last bit, otherwise to rounding. */
+#include <stdint.h>
 #include "results/resultsimpl.h"
 
 #define ADH_CHECKPOINT_VERSION 7 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back) */
@@ -151,6 +152,49 @@ static PetscErrorCode MaskVec(AdhSolver s, Vec *mask)
   PetscFunctionReturn(0);
 }
 
+/* A 64-bit checksum of what a restart takes from a checkpoint: the pressure, the contact set and
+   the curve so far. HDF5 checks its own metadata but not the data, so bytes damaged inside a
+   dataset would restart a wrong state without a word. Each value is mixed with its position and
+   the mixes are summed (modulo 2^64), so any number of ranks, any partition, gives the same. */
+static uint64_t Mix(uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+static uint64_t MixValue(uint64_t where, PetscReal value)
+{
+  double   x = (double)value;
+  uint64_t bits;
+
+  memcpy(&bits, &x, sizeof(bits));
+  return Mix(Mix(where) ^ bits);
+}
+
+static PetscErrorCode Checksum(AdhSolver s, Vec p, Vec mask, char hex[17])
+{
+  const PetscScalar *a, *m;
+  PetscInt           lo, n;
+  uint64_t           mine = 0, all = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(p, &lo, NULL));
+  PetscCall(VecGetLocalSize(p, &n));
+  PetscCall(VecGetArrayRead(p, &a));
+  PetscCall(VecGetArrayRead(mask, &m));
+  for (PetscInt k = 0; k < n; k++) mine += MixValue(4 * (uint64_t)(lo + k), PetscRealPart(a[k])) + MixValue(4 * (uint64_t)(lo + k) + 1, PetscRealPart(m[k]));
+  PetscCall(VecRestoreArrayRead(mask, &m));
+  PetscCall(VecRestoreArrayRead(p, &a));
+  if (!lo) /* the curve, which every rank holds, once */
+    for (PetscInt k = 0; k < s->curve.n; k++)
+      for (PetscInt j = 0; j < AdhCurveNumColumns; j++) mine += MixValue(4 * ((uint64_t)k * AdhCurveNumColumns + (uint64_t)j) + 2, AdhStateValue(&s->curve.state[k], j));
+  PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_UINT64_T, MPI_SUM, s->comm));
+  PetscCall(PetscSNPrintf(hex, 17, "%016llx", (unsigned long long)all));
+  PetscFunctionReturn(0);
+}
+
 /* The checkpoint's contents into the open viewer v. */
 static PetscErrorCode WriteOpen(AdhSolver s, PetscViewer v, PetscInt leg, PetscInt step)
 {
@@ -188,6 +232,11 @@ static PetscErrorCode WriteOpen(AdhSolver s, PetscViewer v, PetscInt leg, PetscI
   PetscCall(VecView(s->p, v));
   PetscCall(MaskVec(s, &mask));
   PetscCall(VecView(mask, v));
+  {
+    char hex[17];
+    PetscCall(Checksum(s, s->p, mask, hex));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "checksum", PETSC_STRING, hex));
+  }
   PetscCall(VecDestroy(&mask));
   PetscCall(TypesCheckpoint(s, v, PETSC_FALSE));
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -344,12 +393,26 @@ static PetscErrorCode ReadOpen(AdhSolver s, PetscViewer v, PetscInt *leg, PetscI
   PetscCall(VecGetArrayRead(mask, &m));
   for (k = 0; k < s->nlocal; k++) s->in_set[k] = PetscRealPart(m[k]) > 0.5;
   PetscCall(VecRestoreArrayRead(mask, &m));
-  PetscCall(VecDestroy(&mask));
   PetscCall(TypesCheckpoint(s, v, PETSC_TRUE));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/curve"));
   PetscCall(ReadCurve(s, v, states));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  { /* checkpoints before the checksum have none: taken as they are */
+    PetscBool has;
+    char      hex[17], *saved = NULL;
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/", "checksum", &has));
+    if (has) {
+      PetscBool same;
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "checksum", PETSC_STRING, NULL, &saved));
+      PetscCall(Checksum(s, s->p, mask, hex));
+      PetscCall(PetscStrcmp(hex, saved, &same));
+      PetscCall(PetscFree(saved));
+      if (!same) PetscCall(VecDestroy(&mask));
+      PetscCheck(same, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: the state it holds does not match its checksum (the file is damaged): restart from another checkpoint or run the path again", s->restart);
+    }
+  }
+  PetscCall(VecDestroy(&mask));
   PetscFunctionReturn(0);
 }
 

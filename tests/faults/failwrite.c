@@ -3,7 +3,10 @@
    $ADHBEM_FAULT_AFTER bytes have gone to such files (0: the first write fails). With ENOSPC a
    reservation (fallocate) that would go beyond those bytes fails too, as a full disk's does; with
    EIO it succeeds. With $ADHBEM_FAULT_OP=rename only a rename onto such a path fails (ENOSPC: a
-   full directory). Every other file is written as usual. */
+   full directory). With $ADHBEM_FAULT_OP=stall the first write to such a file after
+   $ADHBEM_FAULT_RENAMES renames onto such a path (checkpoints replaced) does not return: the
+   process creates the file $ADHBEM_FAULT_MARK and waits to be killed, mid-write. Every other file
+   is written as usual. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>
@@ -43,12 +46,26 @@ static int RenameOnly(void)
   return op && !strcmp(op, "rename");
 }
 
+static int renames; /* renames onto matching paths by this process */
+
+/* A write that never ends, once enough renames have happened: say so through the mark, then wait. */
+static void Stall(int fd)
+{
+  const char *op = getenv("ADHBEM_FAULT_OP"), *after = getenv("ADHBEM_FAULT_RENAMES"), *mark = getenv("ADHBEM_FAULT_MARK");
+
+  if (!op || strcmp(op, "stall") || !Matches(fd) || renames < (after ? atoi(after) : 0)) return;
+  if (mark) close(open(mark, O_CREAT | O_WRONLY, 0644));
+  for (;;) pause();
+}
+
 /* Whether `bytes` more to fd fail (setting errno); counted (count) when they do not. */
 static int Fails(int fd, size_t bytes, int count)
 {
   const char *after = getenv("ADHBEM_FAULT_AFTER");
+  const char *op = getenv("ADHBEM_FAULT_OP");
 
-  if (RenameOnly() || !Matches(fd)) return 0;
+  Stall(fd);
+  if (RenameOnly() || (op && !strcmp(op, "stall")) || !Matches(fd)) return 0;
   if (written + (long long)bytes > (after ? atoll(after) : 0)) {
     errno = Errno();
     return 1;
@@ -121,6 +138,7 @@ int rename(const char *from, const char *to)
 {
   const char *pattern = getenv("ADHBEM_FAULT_PATH");
   NEXT(rename);
+  if (pattern && pattern[0] && strstr(to, pattern)) renames++;
   if (RenameOnly() && pattern && pattern[0] && strstr(to, pattern)) {
     errno = ENOSPC;
     return -1;

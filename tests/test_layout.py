@@ -150,7 +150,7 @@ def test_the_interface_reads_no_types_options_and_branches_on_no_type():
     read = collections.defaultdict(set)
     for path in sources():
         if path.startswith("solver/") and path.endswith(".c"):
-            for name in re.findall(r'PetscOptions\w+\(\s*"(-adh_\w+)"', code(path, strings=True)):
+            for name in re.findall(r'(?:PetscOptions|AdhOptions)\w+\(\s*"(-adh_\w+)"', code(path, strings=True)):
                 read[name].add(path)
     typed = {n for n, paths in read.items() if any(p.startswith("solver/impls/") for p in paths)}
     assert {"-adh_criterion_radius", "-adh_pulloff_rtol", "-adh_predictor_rtol"} <= typed, "the pattern no longer finds the types' options"

@@ -18,7 +18,6 @@
    grid's points, the displacements beyond them, free; S is the inverse of the padded circulant
    of the compliance, whose energy minimised over the padding is the free half-space's. */
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 /* Under a force, every gap beyond this many zone gaps: the attraction is gone (exp(-69) of its
    peak for the exponential law) and the energy falls without bound, no minimum. */

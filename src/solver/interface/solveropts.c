@@ -1,6 +1,5 @@
 /* AdhSolverSetFromOptions: the -adh_ options of the solver and of its types. */
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 const char *const AdhFieldNames[4] = {"pressure", "displacement", "gap", "contact"};
 

@@ -28,7 +28,6 @@
 .seealso: `AdhSolverSetControlType()`, `ADHCONTROLDISPLACEMENT`, `AdhSolverStep()`, `AdhSolverIsPulledOff()`
 M*/
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 /* A copy of the contact state before a step, to go back to when the step finds no equilibrium
    (pull-off). */

@@ -43,7 +43,6 @@
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
 M*/
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 /* How a step finds the zone: the energy minimisation of the law (its traction's drop at the range
    smoothed over a share of it), or the fixed point of the set updates. */

@@ -31,7 +31,6 @@
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONDUGDALE`, `ADHCRITERIONCRACKCLOSURE`
 M*/
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 typedef struct {
   PetscReal rho; /* -adh_exponential_range */

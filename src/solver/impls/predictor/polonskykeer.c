@@ -20,7 +20,6 @@
 .seealso: `AdhSolverSetPredictorType()`, `ADHPREDICTORNONE`
 M*/
 #include "solver/solverimpl.h"
-#include "sys/sysimpl.h"
 
 /* The pressure p >= 0 with the gap g = K p + h - d >= 0 closed where p > 0, on the whole grid,
    carrying F (force: d is the gap's mean on the set, and s->d is set to it) or at d; the contact

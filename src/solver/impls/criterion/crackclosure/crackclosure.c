@@ -54,7 +54,6 @@
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONPOHRTPOPOV`, `AdhSolverEstimateMemory()`
 M*/
 #include "crackclosureimpl.h"
-#include "sys/sysimpl.h"
 
 /* defined below: the certified stop, chosen at set-up (-adh_criterion_certify) */
 static PetscErrorCode Decide_CrackClosure(AdhSolver, Vec, PetscReal, AdhDetachDecision *, PetscReal *);

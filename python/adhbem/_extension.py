@@ -14,8 +14,11 @@ import petsc4py
 
 # Let PETSc see the command line (options such as -adh_fftw_planner) unless the user already
 # initialised petsc4py.
+# Under `python -c CODE ARGS` sys.argv[0] is "-c", which petsc4py passes on as an option (taking the
+# first argument for its value, which PETSc 3.2x then reports as unused at exit): the program's
+# name stands in for it.
 if "petsc4py.PETSc" not in sys.modules:
-    petsc4py.init(sys.argv)
+    petsc4py.init([sys.executable, *sys.argv[1:]] if sys.argv[:1] == ["-c"] else sys.argv)
 from petsc4py import PETSc  # noqa: E402
 
 try:  # an uncaught exception on several ranks: one traceback, no abort banner (_mpierrors.py)

@@ -18,6 +18,7 @@ _LINE = re.compile(r"^\s+-\w*?adh_(?P<name>\w+)(?P<boolcolon>:?) <(?P<default>[^
 _CHOICES = re.compile(r"^(?P<text>.*?) \((?:choose )?one of\) (?P<choices>.*)$")
 _FORMERLY = re.compile(r"^now (?P<now>.*?) : formerly .*$")
 _REAL_PAIR = re.compile(r"^(?P<now>\S+) : \S+$")
+_REAL_TEXT = re.compile(r"^-?(?:[0-9]*\.[0-9]*(?:e[-+]?[0-9]+)?|[0-9]+e[-+]?[0-9]+|inf\.?)$")
 
 
 @dataclass(frozen=True)
@@ -105,18 +106,23 @@ def parse_help(text: str) -> list[Option]:
         if c:
             body, choices = c["text"], tuple(c["choices"].split())
         formerly, pair = _FORMERLY.match(raw), _REAL_PAIR.match(raw)
-        if m["boolcolon"]:
-            kind, default = "bool", raw.split(" : ")[0].strip().upper() == "TRUE"
+        # PETSc up to 3.2x prints ints and strings as "now X : formerly Y", reals as "X : Y" and
+        # bools as "X : Y" after "-name:"; current releases print all three as "now X : formerly Y"
+        # (and a colon after every name): a real has a '.' or an exponent, a bool is TRUE or FALSE
+        now = formerly["now"] if formerly else pair["now"] if pair else None
+        if now is None and raw.strip().upper() in ("TRUE", "FALSE"):  # a bool read outside an options block
+            now = raw.strip()
+        if now is not None and now.strip().upper() in ("TRUE", "FALSE"):
+            kind, default = "bool", now.strip().upper() == "TRUE"
         elif choices:
-            kind, default = "choice", formerly["now"] if formerly else raw
-        elif formerly:  # PETSc prints ints and strings as "now X : formerly Y"
-            now = formerly["now"]
+            kind, default = "choice", now if formerly else raw
+        elif now is not None and (pair or _REAL_TEXT.match(now)):
+            kind, default = "real", _real(now)
+        elif formerly:
             try:
                 kind, default = "int", int(now)
             except ValueError:
                 kind, default = "str", now or None
-        elif pair:  # and reals as "X : Y"
-            kind, default = "real", _real(pair["now"])
         else:  # arrays as "X,Y,..."
             values = [_number(v) for v in raw.split(",") if v]
             kind = "int list" if all(isinstance(v, int) for v in values) else "real list"

@@ -272,9 +272,9 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   /* the pressure, the contact set and a type's vector (force control's unit response) */
   PetscCall(AdhOutputReserve_Private(s, part, 3 * 8 * n, &err));
   if (!err) {
-    PetscCall(AdhOutputWriteBegin_Private());
+    PetscCall(AdhOutputWriteBegin_Private(s, "-adh_checkpoint", part, kept));
     ierr = WriteOpen(s, v, leg, step);
-    ierr = AdhH5Agree_Private(s->comm, ierr); /* a rank's failure is every rank's before the collective close */
+    ierr = AdhH5Agree_Private(s, ierr); /* a rank's failure is every rank's before the collective close */
     if (!ierr) {
       ierr = PetscViewerDestroy(&v);
       if (ierr) v = NULL; /* half-destroyed: not to be closed again */

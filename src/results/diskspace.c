@@ -86,20 +86,13 @@ PetscErrorCode AdhOutputReleaseReserve_Private(AdhSolver s, const char part[])
   PetscFunctionReturn(0);
 }
 
-/* The innermost description on HDF5's error stack: the system's or MPI-IO's words for the cause. */
-static herr_t Innermost(unsigned n, const H5E_error2_t *e, void *ctx)
-{
-  char *cause = (char *)ctx;
-
-  if (n == 0 && e->desc) snprintf(cause, 256, "%s", e->desc);
-  return 0;
-}
-
 /* The writes of one phase (a state's fields or rows, a checkpoint) begin: PETSc's error printing
    is held back, so that a failure inside them is told once, by AdhOutputWriteEnd_Private. */
-PetscErrorCode AdhOutputWriteBegin_Private(void)
+PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[])
 {
   PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(s->writing, sizeof(s->writing), "%s: cannot write %s", option, part));
+  PetscCall(PetscStrncpy(s->writing_kept, kept ? kept : "", sizeof(s->writing_kept)));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   PetscFunctionReturn(0);
 }
@@ -120,14 +113,18 @@ PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr, const
   if (ierr) {
     struct statvfs fs;
     char           dir[PETSC_MAX_PATH_LEN], *slash;
-    (void)H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, Innermost, cause);
+    AdhH5Cause_Private(cause);
     PetscCall(PetscStrncpy(dir, part, sizeof(dir)));
     slash = strrchr(dir, '/');
     if (slash) *slash = 0;
     else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
     /* MPI-IO says "input/output error" for a full disk too: the file system says it plainly */
     if (!statvfs(dir, &fs) && (size_t)fs.f_bavail * fs.f_frsize < ADH_RESERVE_SLACK) PetscCall(PetscStrncpy(cause, strerror(ENOSPC), sizeof(cause)));
-    if (!cause[0]) PetscCall(PetscStrncpy(cause, "the write failed", sizeof(cause)));
+  }
+  {
+    PetscBool any;
+    PetscCall(AdhH5AgreeOnFailure_Private(s, (PetscBool)(ierr != 0), &any));
+    if (!any) PetscFunctionReturn(0);
   }
   first = ierr ? rank : size;
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, s->comm));

@@ -40,7 +40,7 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   }
   ierr = AdhH5WriteBlock_Private(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask);
   PetscCall(PetscFree(mask));
-  PetscCall(AdhH5Agree_Private(s->comm, ierr));
+  PetscCall(AdhH5Agree_Private(s, ierr));
   ADH_H5(H5Dclose(dset));
   ADH_H5(H5Gclose(group));
   PetscFunctionReturn(0);
@@ -116,7 +116,7 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write the fields of state %" PetscInt_FMT " to %s: %s; %s", state, part, strerror(err), kept);
   PetscCall(PetscRealloc((frame + 1) * sizeof(PetscInt), &s->field_states));
   s->field_states[s->nfield_states++] = state;
-  PetscCall(AdhOutputWriteBegin_Private());
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept));
   ierr             = WriteFrame(s, viewer, frame, state);
   ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
   s->output_failed = (PetscBool)(s->output_failed || ierr);

@@ -1,5 +1,7 @@
 /* Raw HDF5 for what PETSc's viewer does not write: datasets extended a row or a frame at a time,
    and UTF-8 string and array attributes. */
+#include <stdlib.h>
+#include <unistd.h>
 #include "results/resultsimpl.h"
 
 /* Dataset `name` of group, extendible along its first dimension: created with dims (and chunk) when
@@ -24,16 +26,72 @@ PetscErrorCode AdhH5OpenExtendible_Private(hid_t group, const char name[], hid_t
   PetscFunctionReturn(0);
 }
 
-/* An error (ierr, raised on this rank or 0) of a write that not every rank makes, made every
-   rank's: the ranks leave together, none left waiting in HDF5's next collective call. Collective. */
-PetscErrorCode AdhH5Agree_Private(MPI_Comm comm, PetscErrorCode ierr)
+/* The innermost description on HDF5's error stack: the system's or MPI-IO's words for the cause. */
+static herr_t Innermost(unsigned n, const H5E_error2_t *e, void *ctx)
 {
-  int failed = ierr != 0;
+  char *cause = (char *)ctx;
+
+  if (n == 0 && e->desc) snprintf(cause, 256, "%s", e->desc);
+  return 0;
+}
+
+/* Why this rank's write failed, in HDF5's innermost words, or "the write failed". */
+void AdhH5Cause_Private(char cause[256])
+{
+  cause[0] = 0;
+  (void)H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, Innermost, cause);
+  if (!cause[0]) snprintf(cause, 256, "the write failed");
+}
+
+/* Whether a write of the phase under way (AdhOutputWriteBegin_Private) failed on any rank: a
+   non-blocking reduction. A rank whose write failed waits for the others at most
+   ADHBEM_ERROR_WAIT seconds (5). Parallel HDF5 cannot recover from a write that fails on some ranks
+   only: the others go on into its next collective operation, where they wait for this rank
+   forever. So a rank that waited in vain ends the job itself, after one line that names the file
+   and the cause; the states written before are kept as after a kill (FILE.h5.part, FILE.csv.part,
+   the last checkpoint), and mpirun ends the other ranks. Collective. */
+PetscErrorCode AdhH5AgreeOnFailure_Private(AdhSolver s, PetscBool failed, PetscBool *any)
+{
+  int         mine = failed ? 1 : 0, all = 0, done = 0;
+  MPI_Request request;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
+  PetscCallMPI(MPI_Iallreduce(&mine, &all, 1, MPI_INT, MPI_MAX, s->comm, &request));
+  if (failed) {
+    const char    *env  = getenv("ADHBEM_ERROR_WAIT");
+    const double   wait = env && atof(env) > 0 ? atof(env) : 5.0;
+    PetscLogDouble t0, t;
+    PetscCall(PetscTime(&t0));
+    for (t = t0; !done && t - t0 < wait;) {
+      PetscCallMPI(MPI_Test(&request, &done, MPI_STATUS_IGNORE));
+      if (!done) usleep(1000);
+      PetscCall(PetscTime(&t));
+    }
+    if (!done) {
+      PetscMPIInt rank, size;
+      char        cause[256];
+      PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+      PetscCallMPI(MPI_Comm_size(s->comm, &size));
+      AdhH5Cause_Private(cause);
+      fprintf(stderr, "adhbem: error: %s: %s, on rank %d of %d alone (parallel HDF5 cannot go on from a write that fails on some ranks only: the job ends)%s%s\n", s->writing, cause, rank, size, s->writing_kept[0] ? "; " : "", s->writing_kept);
+      fflush(stderr);
+      _exit(1);
+    }
+  } else PetscCallMPI(MPI_Wait(&request, MPI_STATUS_IGNORE));
+  *any = (PetscBool)(all != 0);
+  PetscFunctionReturn(0);
+}
+
+/* An error (ierr, raised on this rank or 0) of a write that not every rank makes, made every
+   rank's: the ranks leave together, none left waiting in HDF5's next collective call. Collective. */
+PetscErrorCode AdhH5Agree_Private(AdhSolver s, PetscErrorCode ierr)
+{
+  PetscBool any;
+
+  PetscFunctionBegin;
+  PetscCall(AdhH5AgreeOnFailure_Private(s, (PetscBool)(ierr != 0), &any));
   PetscCall(ierr);
-  PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "the write failed on another rank");
+  PetscCheck(!any, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "the write failed on another rank");
   PetscFunctionReturn(0);
 }
 
@@ -118,7 +176,7 @@ PetscErrorCode AdhH5AppendRows_Private(AdhSolver s, hid_t group, const char name
     PetscCall(PetscFree(buf));
   }
   /* a write of rank 0's that fails is every rank's failure, before the next collective call */
-  PetscCall(AdhH5Agree_Private(s->comm, ierr));
+  PetscCall(AdhH5Agree_Private(s, ierr));
   ADH_H5(H5Dclose(dset));
   PetscFunctionReturn(0);
 }

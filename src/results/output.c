@@ -44,7 +44,7 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
     PetscCall(AdhOutputRemove_Private(s, part));
   }
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s", part, strerror(err));
-  PetscCall(AdhOutputWriteBegin_Private());
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, "no state was written"));
   ierr             = Begin(s, *viewer, file);
   ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, "no state was written");
   s->output_failed = (PetscBool)(s->output_failed || ierr);
@@ -150,7 +150,7 @@ PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
     PetscCall(AdhOutputReleaseReserve_Private(s, part));
   }
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s; %s", part, strerror(err), kept);
-  PetscCall(AdhOutputWriteBegin_Private());
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept));
   ierr             = AppendRows(s, v);
   ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
   s->output_failed = (PetscBool)(s->output_failed || ierr);

@@ -28,7 +28,7 @@ PETSC_INTERN PetscErrorCode AdhOutputWriteTextFile_Private(AdhSolver s, const ch
 /* diskspace.c: space reserved before a write, and a write that fails told once */
 PETSC_INTERN PetscErrorCode AdhOutputReserve_Private(AdhSolver s, const char part[], size_t bytes, int *err);
 PETSC_INTERN PetscErrorCode AdhOutputReleaseReserve_Private(AdhSolver s, const char part[]);
-PETSC_INTERN PetscErrorCode AdhOutputWriteBegin_Private(void);
+PETSC_INTERN PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[]);
 PETSC_INTERN PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr, const char option[], const char part[], const char kept[]);
 PETSC_INTERN PetscErrorCode AdhOutputKept_Private(AdhSolver s, const char part[], char kept[], size_t len);
 PETSC_INTERN PetscErrorCode AdhOutputRemove_Private(AdhSolver s, const char name[]);
@@ -36,7 +36,9 @@ PETSC_INTERN PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v);
 
 /* hdf5.c: raw HDF5 */
 PETSC_INTERN PetscErrorCode AdhH5OpenExtendible_Private(hid_t group, const char name[], hid_t type, int rank, const hsize_t dims[], const hsize_t chunk[], hid_t *dset);
-PETSC_INTERN PetscErrorCode AdhH5Agree_Private(MPI_Comm comm, PetscErrorCode ierr);
+PETSC_INTERN PetscErrorCode AdhH5Agree_Private(AdhSolver s, PetscErrorCode ierr);
+PETSC_INTERN PetscErrorCode AdhH5AgreeOnFailure_Private(AdhSolver s, PetscBool failed, PetscBool *any);
+PETSC_INTERN void           AdhH5Cause_Private(char cause[256]);
 PETSC_INTERN PetscErrorCode AdhH5WriteBlock_Private(hid_t dset, hid_t type, int rank, const hsize_t offset[], const hsize_t count[], const void *buf);
 PETSC_INTERN PetscErrorCode AdhH5WriteStringAttribute_Private(PetscViewer v, const char name[], const char value[]);
 PETSC_INTERN PetscErrorCode AdhH5WriteRealArrayAttribute_Private(PetscViewer v, const char name[], PetscInt n, const PetscReal *values);

@@ -136,6 +136,17 @@ def test_io_error_on_one_rank(tmp_path, failwrite):
     check_failed_cleanly(p, r"^adhbem: error: -adh_output: cannot write out\.h5\.part: .*input/output error")
 
 
+@pytest.mark.parametrize("ranks", [2, 3])
+def test_io_error_on_some_ranks(tmp_path, failwrite, ranks):
+    """EIO that the ranks meet at different writes (each has its own budget of bytes): parallel HDF5
+    cannot go on, so the rank that failed alone says so in one line and ends the job, within the
+    wait of ADHBEM_ERROR_WAIT; the states written before load from the parts."""
+    p = run(tmp_path, "-adh_output", "out.h5", ranks=ranks, fault=("EIO", 1_000_000, "out.h5"), lib=failwrite)
+    line = check_failed_cleanly(p, r"^adhbem: error: -adh_output: cannot write out\.h5\.part: .*input/output error'?, "
+                                   rf"on rank \d of {ranks} alone \(parallel HDF5 cannot go on")
+    check_kept(tmp_path, line)
+
+
 def test_io_error_on_a_checkpoint(tmp_path, failwrite):
     p = run(tmp_path, "-adh_output", "out.h5", "-adh_checkpoint", "ck.h5", ranks=1, fault=("EIO", 100_000, "ck.h5"), lib=failwrite)
     check_failed_cleanly(p, r"^adhbem: error: -adh_checkpoint: cannot write ck\.h5\.part: .*input/output error")

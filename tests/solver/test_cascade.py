@@ -180,7 +180,7 @@ def test_apart_cascade_on_any_number_of_ranks(D):
     (["-adh_cascade_apart", "65"], "-adh_cascade_apart must lie in [0, 64]"),
     (["-adh_cascade_apart", "8", "-adh_control", "force"], "-adh_cascade_apart: displacement control only"),
     (["-adh_cascade_local", "-1"], "-adh_cascade_local must be >= 0"),
-    (["-adh_cascade_local", "nan"], "-adh_cascade_local must be >= 0"),
+    (["-adh_cascade_local", "nan"], "-adh_cascade_local: expected a real number, got 'nan' (NaN, not a value)"),
     (["-adh_cascade_local", "8", "-adh_cascade_local_rtol", "0"], "-adh_cascade_local_rtol must lie in (0, 1)"),
     (["-adh_cascade_local", "8", "-adh_control", "force"], "-adh_cascade_local: displacement control only"),
     (["-adh_cascade_local", "3", "-adh_local_ksp_rtl", "1e-3"], "did you mean -adh_local_ksp_rtol?"),

@@ -11,6 +11,7 @@ at where a thing was found.
 import json
 import os
 import subprocess
+import sys
 
 import h5py
 import pytest
@@ -35,6 +36,11 @@ def clean_env(**extra):
     """The environment of a user's shell: none of the tree's paths, nothing the build set."""
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "LD_LIBRARY_PATH", "ADHBEM_BUILD")}
     return dict(env, **extra)
+
+
+def pkg_config_path(prefix):
+    """adhbem's installed pkg-config folder first, then the user's (where their own PETSc may be)."""
+    return os.pathsep.join(filter(None, [str(prefix / "lib" / "pkgconfig"), os.environ.get("PKG_CONFIG_PATH")]))
 
 
 def run(cmd, **kw):
@@ -101,7 +107,7 @@ def test_installed_executable_runs_without_library_path(prefix):
 
 def test_pkg_config_program(prefix, executable_answer, tmp_path):
     """cc $(pkg-config --cflags --libs adhbem): PETSc and MPI come through Requires."""
-    env = clean_env(PKG_CONFIG_PATH=str(prefix / "lib" / "pkgconfig"))
+    env = clean_env(PKG_CONFIG_PATH=pkg_config_path(prefix))
     flags = run(["pkg-config", "--cflags", "--libs", "adhbem"], env=env).stdout.split()
     assert any(f.startswith("-I") and os.path.realpath(f[2:]) == os.path.realpath(prefix / "include") for f in flags)
     assert "-lpetsc_real" in flags or any(f.startswith("-lpetsc") for f in flags)
@@ -116,7 +122,7 @@ def test_pkg_config_program(prefix, executable_answer, tmp_path):
 def test_own_ksp_example(prefix, tmp_path):
     """examples/c/own_ksp.c (the how-to "the compliance operator in your own KSP"), built as its
     comment says: a flat punch's force against Boussinesq's 2 a E* d, the same on 1 and 2 ranks."""
-    env = clean_env(PKG_CONFIG_PATH=str(prefix / "lib" / "pkgconfig"))
+    env = clean_env(PKG_CONFIG_PATH=pkg_config_path(prefix))
     flags = run(["pkg-config", "--cflags", "--libs", "adhbem"], env=env).stdout.split()
     exe = tmp_path / "own_ksp"
     run(["cc", os.path.join(ROOT, "examples", "c", "own_ksp.c"), "-o", str(exe), *flags], env=env)
@@ -207,6 +213,11 @@ def make_venv(v):
     if subprocess.run(["/usr/bin/python3", "-m", "pip", "--version"], capture_output=True).returncode:
         pytest.skip("pip is not installed for /usr/bin/python3 (python3-pip)")
     run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(v)])
+    if sys.prefix != sys.base_prefix:
+        # the suite runs in a virtual environment with its own PETSc's petsc4py (ADHBEM_PETSC=pypi):
+        # the new one sees that environment's packages too, as a user's would see their petsc4py
+        site = v / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages"
+        (site / "parent.pth").write_text("\n".join(p for p in sys.path if p.startswith(sys.prefix) and p.endswith("-packages")) + "\n")
     r = subprocess.run([str(v / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check",
                         "--timeout", "30", "scikit-build-core>=0.8"], capture_output=True, text=True, env=clean_env())
     if r.returncode and ("Could not find a version" in r.stderr or "NewConnectionError" in r.stderr or "Temporary failure" in r.stderr):

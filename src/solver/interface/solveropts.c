@@ -192,7 +192,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->gamma >= 0 && !PetscIsInfOrNanReal(s->gamma), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_gamma: the work of adhesion must be >= 0, got %g", (double)s->gamma);
   PetscCheck(s->sigma_fixed >= 0 && !PetscIsInfReal(s->sigma_fixed), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_critical_stress must be >= 0 and finite, got %g", (double)s->sigma_fixed);
   PetscCheck(s->max_outer >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_max_outer must be at least 1, got %" PetscInt_FMT, s->max_outer);
-  PetscCheck(s->monitor_interval > 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_monitor_interval must be > 0 seconds (inf: no progress lines inside a step), got %g", (double)s->monitor_interval);
+  PetscCheck(s->monitor_interval >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_monitor_interval must be >= 0 seconds (0: a line at every chance; inf: none inside a step), got %g", (double)s->monitor_interval);
   PetscCheck(s->cascade_rtol >= 0 && s->cascade_rtol < 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_rtol must lie in [0, 1), got %g", (double)s->cascade_rtol);
   PetscCheck(s->cascade_apart >= 0 && s->cascade_apart <= 64, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cascade_apart must lie in [0, 64] grid spacings, got %" PetscInt_FMT, s->cascade_apart);
   PetscCheck(!(s->cascade_apart > 0 && !s->cops.cascades), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart: displacement control only (-adh_control displacement)");

@@ -117,3 +117,16 @@ class FakeSurfaceTopography:
 
     def heights(self):
         return self._h
+
+
+def wait_for(predicate, what, p, wait=600):
+    """Polls predicate() until it holds; fails if the job p (a Popen) ends first or wait seconds pass."""
+    import time
+    import pytest
+    t0 = time.monotonic()
+    while not predicate():
+        if p.poll() is not None:
+            pytest.fail(f"the job ended before {what}")
+        if time.monotonic() - t0 > wait:
+            pytest.fail(f"no {what} after {wait} s")
+        time.sleep(0.05)

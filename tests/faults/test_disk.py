@@ -9,7 +9,6 @@ once from a real 3 MB tmpfs where the machine lets root mount one. Each job star
 mpirun, so these tests run serially."""
 import os
 import re
-import shutil
 import subprocess
 
 import h5py
@@ -19,7 +18,6 @@ import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
 # a JKR sphere, 21 states with their fields (about 100 kB a state)
@@ -33,16 +31,6 @@ KEPT = re.compile(r"the (\d+) states written before are in (\S+) and (\S+) \(adh
 def serial_only():
     if PETSc.COMM_WORLD.getSize() > 1:
         pytest.skip("starts its own mpirun")
-
-
-@pytest.fixture(scope="module")
-def failwrite(tmp_path_factory):
-    cc = shutil.which("cc") or shutil.which("gcc")
-    if not cc:
-        pytest.skip("no C compiler for the interposer")
-    lib = tmp_path_factory.mktemp("failwrite") / "failwrite.so"
-    subprocess.run([cc, "-shared", "-fPIC", "-O1", "-o", str(lib), os.path.join(HERE, "failwrite.c"), "-ldl"], check=True)
-    return str(lib)
 
 
 def run(cwd, *args, ranks=1, fault=None, lib=None):

@@ -4,7 +4,6 @@ states recorded before readable and the checkpoint restarting to the end; SIGKIL
 of a checkpoint's write leaves the previous checkpoint whole, and it restarts to the curve of an
 uninterrupted run. Each job starts its own mpirun, so these tests run serially."""
 import os
-import shutil
 import signal
 import subprocess
 import time
@@ -16,8 +15,8 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
+from common import wait_for
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
 # a rough periodic cell, 41 states of a few tenths of a second each
@@ -57,16 +56,6 @@ def ranks_of(mpirun):
     return pids
 
 
-def wait_for(predicate, what, p):
-    t0 = time.monotonic()
-    while not predicate():
-        if p.poll() is not None:
-            pytest.fail(f"the job ended before {what}")
-        if time.monotonic() - t0 > WAIT:
-            pytest.fail(f"no {what} after {WAIT} s")
-        time.sleep(0.05)
-
-
 def journal_rows(path):
     try:
         return max(0, open(path).read().count("\n") - 1)
@@ -96,7 +85,7 @@ def restart(cwd, args, ranks):
 def test_one_rank_killed(tmp_path, ranks):
     args = [*ROUGH, "-adh_output", "job.h5", "-adh_checkpoint", "ck.h5"]
     p = start(tmp_path, args, ranks)
-    wait_for(lambda: journal_rows(tmp_path / "job.csv.part") >= 3, "3 recorded states", p)
+    wait_for(lambda: journal_rows(tmp_path / "job.csv.part") >= 3, "3 recorded states", p, WAIT)
     victims = ranks_of(p.pid)
     assert len(victims) == ranks
     os.kill(max(victims), signal.SIGKILL)
@@ -126,16 +115,6 @@ def test_one_rank_killed(tmp_path, ranks):
             assert np.array_equal(r.curve[k][:rows], v), k
 
 
-@pytest.fixture(scope="module")
-def failwrite(tmp_path_factory):
-    cc = shutil.which("cc") or shutil.which("gcc")
-    if not cc:
-        pytest.skip("no C compiler for the interposer")
-    lib = tmp_path_factory.mktemp("failwrite") / "failwrite.so"
-    subprocess.run([cc, "-shared", "-fPIC", "-O1", "-o", str(lib), os.path.join(HERE, "failwrite.c"), "-ldl"], check=True)
-    return str(lib)
-
-
 def test_sigkill_during_a_checkpoint_write(tmp_path, failwrite):
     """The interposer holds the sixth checkpoint's write (after five were replaced) until the job is
     killed: ck.h5 is the fifth, whole, and the restart from it ends on the uninterrupted curve."""
@@ -149,7 +128,7 @@ def test_sigkill_during_a_checkpoint_write(tmp_path, failwrite):
            "-x", "ADHBEM_FAULT_PATH", "-x", "ADHBEM_FAULT_MARK", EXE, *args]
     p = subprocess.Popen(cmd, cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                          start_new_session=True)
-    wait_for(lambda: (tmp_path / "stalled").exists(), "the held checkpoint write", p)
+    wait_for(lambda: (tmp_path / "stalled").exists(), "the held checkpoint write", p, WAIT)
     kill_all(p)
     assert (tmp_path / "ck.h5.part").exists()  # the write that was cut
     with h5py.File(tmp_path / "ck.h5", "r") as f:

@@ -22,6 +22,7 @@ import pytest
 import adhbem
 from adhbem import PETSc
 from adhbem_build import EXE
+from common import wait_for
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
@@ -62,17 +63,6 @@ def session(pid):
             if int(fields[3]) == pid and fields[0] != "Z":  # a killed rank stays a zombie until reaped
                 pids.append(int(entry))
     return pids
-
-
-def wait_for(predicate, what, p):
-    """Polls predicate() until it holds; fails if the job ends first or WAIT seconds pass."""
-    t0 = time.monotonic()
-    while not predicate():
-        if p.poll() is not None:
-            pytest.fail(f"the job ended before {what}")
-        if time.monotonic() - t0 > WAIT:
-            pytest.fail(f"no {what} after {WAIT} s")
-        time.sleep(0.05)
 
 
 def journal_rows(path):

@@ -219,9 +219,13 @@ PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v)
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = PetscViewerDestroy(v);
   PetscCall(PetscPopErrorHandler());
-  /* Still open: on several ranks a write that failed on some of them leaves HDF5's caches different
-     from rank to rank, and its close at the end of MPI would hang (or crash): the error told, the
-     job ends here. */
-  if (ierr) MPI_Abort(comm, 1);
+  /* Still open (a write that failed before the file's first flush). On one rank HDF5's second
+     attempt at the end of MPI fails quietly; on several it would hang: the error told, the job
+     ends here. */
+  if (ierr) {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    if (size > 1) MPI_Abort(comm, 1);
+  }
   PetscFunctionReturn(0);
 }

@@ -135,6 +135,12 @@ def test_io_error_on_some_ranks(tmp_path, failwrite, ranks):
     check_kept(tmp_path, line)
 
 
+def test_io_error_on_the_first_write(tmp_path, failwrite):
+    """EIO before the file's first flush (its superblock), on one rank: one line, no MPI_Abort."""
+    p = run(tmp_path, "-adh_output", "out.h5", ranks=1, fault=("EIO", 0, "out.h5"), lib=failwrite)
+    check_failed_cleanly(p, r"^adhbem: error: -adh_output: cannot write out\.h5\.part: .*input/output error.*; no state was written")
+
+
 def test_io_error_on_a_checkpoint(tmp_path, failwrite):
     p = run(tmp_path, "-adh_output", "out.h5", "-adh_checkpoint", "ck.h5", ranks=1, fault=("EIO", 100_000, "ck.h5"), lib=failwrite)
     check_failed_cleanly(p, r"^adhbem: error: -adh_checkpoint: cannot write ck\.h5\.part: .*input/output error")

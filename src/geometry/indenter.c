@@ -69,11 +69,8 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   PetscFunctionBegin;
   PetscOptionsBegin(comm, prefix, "adhbem indenter", "AdhSolver");
   PetscCall(PetscOptionsEnum("-adh_indenter", "Indenter shape (array: a profile given through the API)", "AdhSolver", AdhIndenterTypes, (PetscEnum)ind->type, (PetscEnum *)&ind->type, &typeset));
-  PetscCall(AdhOptionsCheckNumber("-adh_radius", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_radius", "Sphere radius R (h = r^2/2R)", "AdhSolver", ind->radius, &ind->radius, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_punch_radius", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_punch_radius", "Flat punch radius a", "AdhSolver", ind->punch_radius, &ind->punch_radius, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_cone_slope", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_cone_slope", "Cone slope (h = slope r)", "AdhSolver", ind->cone_slope, &ind->cone_slope, NULL));
   PetscCall(PetscOptionsString("-adh_topography", "Topography file (implies -adh_indenter file): .npy (Ny, Nx) float64/float32, or HDF5", "AdhSolver", ind->topography, ind->topography, sizeof(ind->topography), &topo));
   PetscCall(PetscOptionsString("-adh_topography_dataset", "Dataset name inside an HDF5 topography file", "AdhSolver", ind->dataset, ind->dataset, sizeof(ind->dataset), NULL));

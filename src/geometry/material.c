@@ -45,15 +45,10 @@ PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[
 
   PetscFunctionBegin;
   PetscOptionsBegin(comm, prefix, "adhbem material", "AdhSolver");
-  PetscCall(AdhOptionsCheckNumber("-adh_E_star", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_E_star", "Reduced modulus E*", "", Es, &Es, &setEs));
-  PetscCall(AdhOptionsCheckNumber("-adh_E1", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_E1", "Young's modulus of body 1 (instead of -adh_E_star)", "", E1, &E1, &setE1));
-  PetscCall(AdhOptionsCheckNumber("-adh_nu1", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_nu1", "Poisson ratio of body 1", "", nu1, &nu1, &setnu1));
-  PetscCall(AdhOptionsCheckNumber("-adh_E2", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_E2", "Young's modulus of body 2 (default inf: rigid)", "", E2, &E2, &setE2));
-  PetscCall(AdhOptionsCheckNumber("-adh_nu2", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_nu2", "Poisson ratio of body 2", "", nu2, &nu2, &setnu2));
   PetscOptionsEnd();
   if (setE1 || setE2 || setnu1 || setnu2) {

@@ -319,7 +319,6 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_fftw_timelimit", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
   PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "MatCreateAdhCompliance", AdhFFTWLayouts, (PetscEnum)layout, (PetscEnum *)&layout, NULL));
   PetscOptionsEnd();

@@ -111,15 +111,13 @@ PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   n[0] = g->Nx, n[1] = g->Ny, L[0] = g->Lx, L[1] = g->Ly;
   PetscOptionsBegin(g->comm, g->prefix, "adhbem grid", "AdhGrid");
-  PetscCall(AdhOptionsCheckNumber("-adh_n", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
+  PetscCall(AdhOptionsIntArray("-adh_n", "Grid points per side: N or Nx,Ny", "AdhGridSetSizes", n, &nn, &set));
   if (set) {
     PetscCheck(nn >= 1, g->comm, PETSC_ERR_ARG_WRONG, "-adh_n needs N or Nx,Ny");
     if (nn == 1) n[1] = n[0];
     g->Nx = n[0]; g->Ny = n[1];
   }
-  PetscCall(AdhOptionsCheckNumber("-adh_size", ADH_NUMBER_REAL));
-  PetscCall(PetscOptionsRealArray("-adh_size", "Domain side lengths: L or Lx,Ly", "AdhGridSetSizes", L, &nLi, &set));
+  PetscCall(AdhOptionsRealArray("-adh_size", "Domain side lengths: L or Lx,Ly", "AdhGridSetSizes", L, &nLi, &set));
   if (set) {
     PetscCheck(nLi >= 1, g->comm, PETSC_ERR_ARG_WRONG, "-adh_size needs L or Lx,Ly");
     if (nLi == 1) L[1] = L[0];

@@ -1,8 +1,8 @@
 /* The values given to adhbem's numeric options, checked before PETSc reads them: PETSc's own
    message for a value that is not a number ("Input string abc has no numeric value") names no
    option, it reads NaN as a real, and it casts an integer beyond PetscInt's range (99999999999)
-   to another integer without a word. Each read of a numeric option is preceded by
-   AdhOptionsCheckNumber() (sysimpl.h); what range the option's meaning allows is checked after
+   to another integer without a word. adhbem reads its numeric options through AdhOptionsReal(),
+   AdhOptionsInt() and their arrays (sysimpl.h), which check first; what range the option's meaning allows is checked after
    the read, where the meaning is. */
 #include <errno.h>
 #include <math.h>

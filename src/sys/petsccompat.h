@@ -18,9 +18,9 @@ typedef PetscOptionItems AdhOptionItems;
    option's range itself, after the read, where the meaning is. The bounds are the true infinities
    (PETSC_INFINITY is a finite number). */
 #if defined(PetscOptionsRangeReal)
-  #define AdhOptionsReal(opt, text, man, current, value, set) PetscOptionsRangeReal(opt, text, man, current, value, set, -(PetscReal)HUGE_VAL, (PetscReal)HUGE_VAL)
+  #define AdhPETScOptionsReal(opt, text, man, current, value, set) PetscOptionsRangeReal(opt, text, man, current, value, set, -(PetscReal)HUGE_VAL, (PetscReal)HUGE_VAL)
 #else
-  #define AdhOptionsReal(opt, text, man, current, value, set) PetscOptionsReal(opt, text, man, current, value, set)
+  #define AdhPETScOptionsReal(opt, text, man, current, value, set) PetscOptionsReal(opt, text, man, current, value, set)
 #endif
 /* KSPConvergedDefaultDestroy takes the context up to 3.22 and its address from 3.23 (a
    PetscCtxDestroyFn); C converts the one to the other without a word, and the wrong one crashes. */

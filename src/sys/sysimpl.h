@@ -15,13 +15,45 @@ PETSC_INTERN PetscErrorCode AdhCheckKSPOptions_Private(KSP, const char prefix[],
 
 /* The value given to a numeric option (optionvalues.c) is a number of its kind: an integer within
    PetscInt, or a real (inf allowed, NaN not), each item of a comma-separated list; else an error
-   naming the option. Called before PETSc reads the option, inside an options block: */
+   naming the option. Called before PETSc reads the option, by the readers below: */
 typedef enum {
   ADH_NUMBER_INT,
   ADH_NUMBER_REAL
 } AdhNumberKind;
 PETSC_INTERN PetscErrorCode AdhOptionsCheckNumber_Private(MPI_Comm, PetscOptions, const char prefix[], const char name[], AdhNumberKind);
-#define AdhOptionsCheckNumber(name, kind) AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, name, kind)
+/* adhbem's reads of numeric options inside an options block: the value checked, then read. */
+static inline PetscErrorCode AdhOptionsReal_Private(AdhOptionItems PetscOptionsObject, const char opt[], const char text[], const char man[], PetscReal current, PetscReal *value, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, opt, ADH_NUMBER_REAL));
+  PetscCall(AdhPETScOptionsReal(opt, text, man, current, value, set));
+  PetscFunctionReturn(0);
+}
+static inline PetscErrorCode AdhOptionsInt_Private(AdhOptionItems PetscOptionsObject, const char opt[], const char text[], const char man[], PetscInt current, PetscInt *value, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, opt, ADH_NUMBER_INT));
+  PetscCall(PetscOptionsInt(opt, text, man, current, value, set));
+  PetscFunctionReturn(0);
+}
+static inline PetscErrorCode AdhOptionsRealArray_Private(AdhOptionItems PetscOptionsObject, const char opt[], const char text[], const char man[], PetscReal value[], PetscInt *n, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, opt, ADH_NUMBER_REAL));
+  PetscCall(PetscOptionsRealArray(opt, text, man, value, n, set));
+  PetscFunctionReturn(0);
+}
+static inline PetscErrorCode AdhOptionsIntArray_Private(AdhOptionItems PetscOptionsObject, const char opt[], const char text[], const char man[], PetscInt value[], PetscInt *n, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(AdhOptionsCheckNumber_Private(PetscOptionsObject->comm, PetscOptionsObject->options, PetscOptionsObject->prefix, opt, ADH_NUMBER_INT));
+  PetscCall(PetscOptionsIntArray(opt, text, man, value, n, set));
+  PetscFunctionReturn(0);
+}
+#define AdhOptionsReal(opt, text, man, current, value, set)      AdhOptionsReal_Private(PetscOptionsObject, opt, text, man, current, value, set)
+#define AdhOptionsInt(opt, text, man, current, value, set)       AdhOptionsInt_Private(PetscOptionsObject, opt, text, man, current, value, set)
+#define AdhOptionsRealArray(opt, text, man, value, n, set)       AdhOptionsRealArray_Private(PetscOptionsObject, opt, text, man, value, n, set)
+#define AdhOptionsIntArray(opt, text, man, value, n, set)        AdhOptionsIntArray_Private(PetscOptionsObject, opt, text, man, value, n, set)
 
 /* The types of one kind, by name (registry.c): option is the option that chooses one
    ("-adh_criterion"), what says what they are ("detachment criterion"). */

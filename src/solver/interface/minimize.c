@@ -49,11 +49,9 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   PetscInt                 pc    = s->minimize_pc ? 1 : 0;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_minimize_rtol", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_minimize_rtol", "A cohesive law's step stops when the projected gradient of the energy, a pressure, is this small relative to the pressure field", "AdhSolver", s->minimize_rtol, &s->minimize_rtol, NULL));
   PetscCheck(s->minimize_rtol > 0 && s->minimize_rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_minimize_rtol must lie in (0, 1), got %g", (double)s->minimize_rtol);
-  PetscCall(AdhOptionsCheckNumber("-adh_minimize_max_it", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_minimize_max_it", "The largest number of iterations of a cohesive law's energy minimisation in one step", "AdhSolver", s->minimize_max_it, &s->minimize_max_it, NULL));
+  PetscCall(AdhOptionsInt("-adh_minimize_max_it", "The largest number of iterations of a cohesive law's energy minimisation in one step", "AdhSolver", s->minimize_max_it, &s->minimize_max_it, NULL));
   PetscCheck(s->minimize_max_it > 0, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_minimize_max_it must be positive, got %" PetscInt_FMT, s->minimize_max_it);
   PetscCall(PetscOptionsBool("-adh_minimize_monitor", "Print a line per iteration of a cohesive law's energy minimisation (as -ksp_monitor)", "AdhSolver", s->minimize_monitor, &s->minimize_monitor, NULL));
   PetscCall(PetscOptionsEList("-adh_minimize_pc", "The preconditioner of a cohesive law's minimisation: the compliance on the free points (fourier) or none", "AdhSolver", pcs, 2, pcs[pc], &pc, NULL));

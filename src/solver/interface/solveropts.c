@@ -114,13 +114,11 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(AdhIndenterSetFromOptions(s->comm, s->prefix, &s->indenter));
   for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
   PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesion", "AdhSolver");
-  PetscCall(AdhOptionsCheckNumber("-adh_gamma", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field", "Work of adhesion field dgamma(x,y) from a file (.npy (Ny, Nx), or HDF5), replacing -adh_gamma in Sigma", "AdhSolver", s->gamma_file, s->gamma_file, sizeof(s->gamma_file), NULL));
   PetscCall(PetscOptionsString("-adh_gamma_field_dataset", "Dataset name inside an HDF5 -adh_gamma_field file", "AdhSolver", s->gamma_dataset, s->gamma_dataset, sizeof(s->gamma_dataset), NULL));
   PetscCall(PetscOptionsFList("-adh_criterion", "When a point lets go: crack-closure (the contact edge's energy release rate, averaged along it, exceeds dgamma; the default) or pohrt-popov (the paper: p < -Sigma; acts as if dgamma were up to 1.85 times larger on straight edges), both the JKR limit (zero range); or a finite range: dugdale (Maugis' cohesive zone, -adh_dugdale_stress), exponential (an exponential attraction, -adh_exponential_range; steps minimise the energy)", "AdhSolverSetCriterionType", AdhCriteria.list, s->criterion_type, criterion, sizeof(criterion), &set));
   if (set) PetscCall(AdhSolverSetCriterionType(s, criterion));
-  PetscCall(AdhOptionsCheckNumber("-adh_critical_stress", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_critical_stress", "Fixed critical tensile stress, replacing the mesh-dependent Sigma (for studies of the criterion; 0: use Sigma)", "AdhSolver", s->sigma_fixed, &s->sigma_fixed, NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem boundary, path and load control", "AdhSolver");
@@ -128,8 +126,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (set) s->boundary_set = PETSC_TRUE;
   PetscCall(PetscOptionsFList("-adh_control", "What -adh_path holds: indentations d (displacement) or forces F = sum p hx hy (force; periodic: mean pressure x cell area)", "AdhSolverSetControlType", AdhControls.list, s->control_type, control, sizeof(control), &set));
   if (set) PetscCall(AdhSolverSetControlType(s, control));
-  PetscCall(AdhOptionsCheckNumber("-adh_path", ADH_NUMBER_REAL));
-  PetscCall(PetscOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force); default 0.01,0 (-help shows an array's first value only)", "AdhSolver", path, &n, &set));
+  PetscCall(AdhOptionsRealArray("-adh_path", "Path breakpoints: indentations d0,d1,... (forces under -adh_control force); default 0.01,0 (-help shows an array's first value only)", "AdhSolver", path, &n, &set));
   if (set) {
     PetscCheck(n >= 2, s->comm, PETSC_ERR_ARG_WRONG, "-adh_path needs at least two points d0,d1,..., got %" PetscInt_FMT, n);
     PetscCall(PetscFree(s->path));
@@ -137,8 +134,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
     PetscCall(PetscArraycpy(s->path, path, n));
     s->npath = n;
   }
-  PetscCall(AdhOptionsCheckNumber("-adh_steps", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
+  PetscCall(AdhOptionsInt("-adh_steps", "Steps per leg of the path", "AdhSolver", s->steps, &s->steps, NULL));
   PetscCall(PetscOptionsBool("-adh_stop_at_pulloff", "A pull-off ends the path (false: only its leg, and the legs after it run, to come back into contact)", "AdhSolver", s->stop_at_pulloff, &s->stop_at_pulloff, NULL));
   PetscCall(PetscOptionsEnum("-adh_start", "Starting state: hertz (adhesion-free at d0) or adhesive (loaded from first touch)", "AdhSolver", AdhStarts, (PetscEnum)s->start, (PetscEnum *)&s->start, NULL));
   PetscCall(PetscOptionsEnum("-adh_attach", "When a point joins the set: griffith (beside the contact, when the edge's energy release rate one element further out is below dgamma: crack-closure's mirror; the default with crack-closure), reach (its gap is below Sigma K_00, the gap it closes under its own critical tension; the default with pohrt-popov) or penetration (g < 0: loading stays Hertz-like)", "AdhSolver", AdhAttaches, (PetscEnum)s->attach, (PetscEnum *)&s->attach, &set));
@@ -155,35 +151,26 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscOptionsBegin(s->comm, s->prefix, "adhbem output, monitoring and long runs", "AdhSolver");
   PetscCall(PetscOptionsString("-adh_output", "Results file FILE.h5 (the curve also as FILE.csv)", "AdhSolver", s->output, s->output, sizeof(s->output), NULL));
   PetscCall(ParseFields(s));
-  PetscCall(AdhOptionsCheckNumber("-adh_fields_stride", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_fields_stride", "Write the fields of every K-th state (0, K, 2K, ...)", "AdhSolver", s->fields_stride, &s->fields_stride, NULL));
+  PetscCall(AdhOptionsInt("-adh_fields_stride", "Write the fields of every K-th state (0, K, 2K, ...)", "AdhSolver", s->fields_stride, &s->fields_stride, NULL));
   monitor_set = s->monitor;
   PetscCall(PetscOptionsBool("-adh_monitor", "Print one line per step, and progress inside long steps", "AdhSolverMonitorSet", s->monitor, &s->monitor, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_progress", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_progress", "Print a progress line (state, time so far and an estimate of the time left) after this many seconds of a path, then every tenth of the time so far or this, whichever is longer (0: none; -adh_monitor prints a line a state instead)", "AdhSolver", s->progress, &s->progress, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_monitor_interval", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_monitor_interval", "Seconds between progress lines inside a step (-adh_monitor)", "AdhSolver", s->monitor_interval, &s->monitor_interval, NULL));
   PetscCall(PetscOptionsString("-adh_checkpoint", "Checkpoint file: the state after recorded states (replaced atomically), to go on from with -adh_restart", "AdhSolver", s->checkpoint, s->checkpoint, sizeof(s->checkpoint), NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_checkpoint_every", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_checkpoint_every", "Write the checkpoint after every K-th state (and when SIGTERM or SIGINT stops the run)", "AdhSolver", s->checkpoint_every, &s->checkpoint_every, NULL));
+  PetscCall(AdhOptionsInt("-adh_checkpoint_every", "Write the checkpoint after every K-th state (and when SIGTERM or SIGINT stops the run)", "AdhSolver", s->checkpoint_every, &s->checkpoint_every, NULL));
   PetscCall(PetscOptionsString("-adh_restart", "Go on from this checkpoint (the options that shape the problem must be the checkpoint's)", "AdhSolver", s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
   PetscOptionsBegin(s->comm, s->prefix, "adhbem solver tuning", "AdhSolver");
   PetscCall(PetscOptionsBool("-adh_certify", "Stop intermediate CG solves once the next update of the contact set (points that let go or join) is certain", "AdhSolver", certify, &certify, NULL));
   PetscCall(PetscOptionsBool("-adh_cascade_single", "The solves that stop at -adh_cascade_rtol, and the local solves of -adh_cascade_local, apply the compliance and the preconditioner in single precision (float transforms: half the bytes to move; periodic cells); the last solve of a step stays in double", "AdhSolver", s->cascade_single, &s->cascade_single, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_cascade_apart", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_cascade_apart", "Points may join in a set update that lets others go, where they lie more than this many grid spacings from every point let go in it (0: joins only in an update that lets nothing go, the exact cascade)", "AdhSolver", s->cascade_apart, &s->cascade_apart, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_cascade_rtol", ADH_NUMBER_REAL));
+  PetscCall(AdhOptionsInt("-adh_cascade_apart", "Points may join in a set update that lets others go, where they lie more than this many grid spacings from every point let go in it (0: joins only in an update that lets nothing go, the exact cascade)", "AdhSolver", s->cascade_apart, &s->cascade_apart, NULL));
   PetscCall(AdhOptionsReal("-adh_cascade_rtol", "Solves between set updates of a step stop at this relative residual, and the set is updated on their pressures (0: every solve to -adh_ksp_rtol); a set that stands on one is solved to -adh_ksp_rtol and tested again. Fewer KSP iterations; the sets along the way may differ from the exact cascade's", "AdhSolver", s->cascade_rtol, &s->cascade_rtol, NULL));
   PetscCall(AdhSolverDefaultCascadeLocal_Private(s)); /* the default follows the criterion and the control read above */
-  PetscCall(AdhOptionsCheckNumber("-adh_cascade_local", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_cascade_local", "After a set update lets points go, solve the set again only within this many times the smallest asperities' JKR contact radius (the estimate the run prints) of them, the rest frozen; let go what that shows, and repeat; the whole set is solved again when a local solve lets nothing go (0: every solve on the whole set, the exact cascade of the paper; inf: the whole grid, the default with crack-closure under displacement control, 0 otherwise; below 3 the frozen rest biases the path towards letting go)", "AdhSolver", s->cascade_local, &s->cascade_local, &set));
   if (set) s->cascade_local_set = PETSC_TRUE;
-  PetscCall(AdhOptionsCheckNumber("-adh_cascade_local_rtol", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_cascade_local_rtol", "The relative residual at which the local solves of -adh_cascade_local stop, relative to the residual the points let go leave", "AdhSolver", s->cascade_local_rtol, &s->cascade_local_rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_box", "Convolve on the bounding box of the contact set (free boundary)", "AdhSolver", s->use_box, &s->use_box, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_max_outer", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
+  PetscCall(AdhOptionsInt("-adh_max_outer", "Largest number of set updates in one step", "AdhSolver", s->max_outer, &s->max_outer, NULL));
   PetscCall(AdhSolverMinimizeSetFromOptions_Private(s, PetscOptionsObject)); /* the cohesive laws' steps */
   PetscCall(PetscOptionsBool("-adh_memory_check", "Refuse a grid whose estimated memory exceeds a node's (the estimate: -adh_view)", "AdhSolverEstimateMemory", s->memory_check, &s->memory_check, NULL));
   PetscOptionsEnd();

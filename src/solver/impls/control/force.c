@@ -55,7 +55,6 @@ static PetscErrorCode SetFromOptions_Force(AdhSolver s, AdhOptionItems PetscOpti
   Force *f = (Force *)s->cops.data;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_pulloff_rtol", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_pulloff_rtol", "Force control: relative resolution of the pull-off force", "ADHCONTROLFORCE", f->pulloff_rtol, &f->pulloff_rtol, NULL));
   PetscCheck(f->pulloff_rtol > 0 && f->pulloff_rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_pulloff_rtol must lie in (0, 1), got %g", (double)f->pulloff_rtol);
   PetscFunctionReturn(0);

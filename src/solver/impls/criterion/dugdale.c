@@ -188,11 +188,9 @@ static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, AdhOptionItems PetscOp
   Dugdale *dd = (Dugdale *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_dugdale_stress", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
   PetscCheck(dd->s0 == 0 || (dd->s0 > 0 && !PetscIsInfOrNanReal(dd->s0)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_stress must be > 0 and finite, got %g", (double)dd->s0);
   PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_dugdale_smoothing", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
   PetscCheck(dd->smoothing > 0 && dd->smoothing < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_smoothing must lie in (0, 1), got %g", (double)dd->smoothing);
   /* the route decides the kind of step: a law minimises, none updates sets */

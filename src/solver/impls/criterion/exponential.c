@@ -84,7 +84,6 @@ static PetscErrorCode SetFromOptions_Exponential(AdhSolver s, AdhOptionItems Pet
   Exponential *ex = (Exponential *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_exponential_range", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_exponential_range", "exponential: the range rho of the attraction (dgamma/rho) exp(-g/rho) at gap g (required with -adh_criterion exponential)", "ADHCRITERIONEXPONENTIAL", ex->rho, &ex->rho, NULL));
   PetscCheck(ex->rho == 0 || (ex->rho > 0 && !PetscIsInfOrNanReal(ex->rho)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_exponential_range must be > 0 and finite, got %g", (double)ex->rho);
   PetscFunctionReturn(0);

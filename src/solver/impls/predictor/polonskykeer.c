@@ -276,11 +276,9 @@ static PetscErrorCode SetFromOptions_PolonskyKeer(AdhSolver s, AdhOptionItems Pe
   PolonskyKeerData *pk = (PolonskyKeerData *)s->pops.data;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_predictor_rtol", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_predictor_rtol", "polonsky-keer: stop when an iteration changes the pressure by less than this fraction of its 1-norm", "ADHPREDICTORPOLONSKYKEER", pk->rtol, &pk->rtol, NULL));
   PetscCall(PetscOptionsBool("-adh_predictor_fourier", "polonsky-keer under force control: precondition with the inverse of the compliance's symbol, as the set solves do", "ADHPREDICTORPOLONSKYKEER", pk->fourier, &pk->fourier, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_predictor_max_it", ADH_NUMBER_INT));
-  PetscCall(PetscOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "ADHPREDICTORPOLONSKYKEER", pk->max_it, &pk->max_it, NULL));
+  PetscCall(AdhOptionsInt("-adh_predictor_max_it", "polonsky-keer: at most this many iterations per step", "ADHPREDICTORPOLONSKYKEER", pk->max_it, &pk->max_it, NULL));
   PetscCheck(pk->rtol > 0 && pk->rtol < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_predictor_rtol must lie in (0, 1), got %g", (double)pk->rtol);
   PetscCheck(pk->max_it >= 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_predictor_max_it must be at least 1, got %" PetscInt_FMT, pk->max_it);
   PetscFunctionReturn(0);

@@ -161,9 +161,7 @@ static PetscErrorCode SetFromOptions_CrackClosure(AdhSolver s, AdhOptionItems Pe
   CrackClosure *cc = (CrackClosure *)s->crops.data;
 
   PetscFunctionBegin;
-  PetscCall(AdhOptionsCheckNumber("-adh_criterion_radius", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_criterion_radius", "crack-closure: average the release rate along the contact edge within this many grid spacings (the weight fades to 0 there), or more near the detachment (-adh_criterion_radius_max)", "ADHCRITERIONCRACKCLOSURE", cc->radius, &cc->radius, NULL));
-  PetscCall(AdhOptionsCheckNumber("-adh_criterion_radius_max", ADH_NUMBER_REAL));
   PetscCall(AdhOptionsReal("-adh_criterion_radius_max", "crack-closure: near the detachment, average within the edge's radius of curvature where that is larger, up to this many grid spacings (so that curved edges converge with the grid; equal to -adh_criterion_radius: a fixed window)", "ADHCRITERIONCRACKCLOSURE", cc->radius_max, &cc->radius_max, NULL));
   PetscCall(PetscOptionsBool("-adh_criterion_certify", "crack-closure: the certified early stop of intermediate solves too (its openings bounded through K's row norms): the same sets with 12-16% fewer FFT pairs and about the default's time (it keeps each set's walks along the front, about 1 kB a front point)", "ADHCRITERIONCRACKCLOSURE", cc->certify, &cc->certify, NULL));
   PetscCheck(cc->radius >= 1 && cc->radius <= 64, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_criterion_radius must lie in [1, 64] grid spacings, got %g", (double)cc->radius);

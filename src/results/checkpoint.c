@@ -272,14 +272,14 @@ PetscErrorCode AdhCheckpointWrite_Private(AdhSolver s, PetscInt leg, PetscInt st
   /* the pressure, the contact set and a type's vector (force control's unit response) */
   PetscCall(AdhOutputReserve_Private(s, part, 3 * 8 * n, &err));
   if (!err) {
-    PetscCall(AdhOutputWriteBegin_Private(s, "-adh_checkpoint", part, kept));
+    PetscCall(AdhOutputWriteBegin_Private(s, "-adh_checkpoint", part, kept, PETSC_TRUE));
     ierr = WriteOpen(s, v, leg, step);
     ierr = AdhH5Agree_Private(s, ierr); /* a rank's failure is every rank's before the collective close */
     if (!ierr) {
       ierr = PetscViewerDestroy(&v);
       if (ierr) v = NULL; /* half-destroyed: not to be closed again */
     }
-    ierr = AdhOutputWriteEnd_Private(s, ierr, "-adh_checkpoint", part, kept);
+    ierr = AdhOutputWriteEnd_Private(s, ierr);
   }
   PetscCall(AdhOutputAbandon_Private(&v)); /* after a failure: not a write more (its FILE.part is removed) */
   if (err || ierr) PetscCall(AdhOutputRemove_Private(s, part));

@@ -75,7 +75,7 @@ PetscErrorCode AdhOutputReleaseReserve_Private(AdhSolver s, const char part[])
       if (!fstat(fd, &st)) {
         /* blocks past the end: tmpfs and XFS free them on a punched hole, ext4 on a truncation to the same size */
         (void)fallocate(fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, st.st_size, (off_t)1 << 40);
-        (void)ftruncate(fd, st.st_size);
+        if (ftruncate(fd, st.st_size)) { /* nothing to give back */ }
       }
       close(fd);
     }
@@ -86,23 +86,29 @@ PetscErrorCode AdhOutputReleaseReserve_Private(AdhSolver s, const char part[])
   PetscFunctionReturn(0);
 }
 
-/* The writes of one phase (a state's fields or rows, a checkpoint) begin: PETSc's error printing
-   is held back, so that a failure inside them is told once, by AdhOutputWriteEnd_Private. */
-PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[])
+/* The writes of one phase (a state's fields or rows, a checkpoint) of file part for option begin:
+   PETSc's error printing is held back, so that a failure inside them is told once, by
+   AdhOutputWriteEnd_Private, with kept (what is left if it fails). discard: part holds nothing
+   to keep if the phase fails (removed where a failing rank ends the job alone). */
+PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[], PetscBool discard)
 {
   PetscFunctionBegin;
   PetscCall(PetscSNPrintf(s->writing, sizeof(s->writing), "%s: cannot write %s", option, part));
+  PetscCall(PetscStrncpy(s->writing_part, part, sizeof(s->writing_part)));
   PetscCall(PetscStrncpy(s->writing_kept, kept ? kept : "", sizeof(s->writing_kept)));
+  s->writing_discard = discard;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   PetscFunctionReturn(0);
 }
 
 /* The writes that began with AdhOutputWriteBegin_Private ended with ierr on this rank. If they
-   failed on any rank: one error, on every rank, naming option and file with the cause (the
-   lowest failing rank's: a full file system said as such, else HDF5's innermost words) and kept
-   (what the file still holds). Collective. */
-PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr, const char option[], const char part[], const char kept[])
+   failed on any rank: one error, on every rank, naming the option and the file with the cause
+   (the lowest failing rank's: a full file system said as such, else HDF5's innermost words) and
+   what the file still holds. Collective. */
+PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr)
 {
+  const char *part = s->writing_part, *kept = s->writing_kept;
+
   char        cause[256] = "";
   PetscMPIInt rank, size, first;
 
@@ -130,7 +136,7 @@ PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr, const
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, s->comm));
   if (first == size) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Bcast(cause, sizeof(cause), MPI_CHAR, first, s->comm));
-  SETERRQ(s->comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s%s%s", option, part, cause, kept && kept[0] ? "; " : "", kept ? kept : "");
+  SETERRQ(s->comm, PETSC_ERR_FILE_WRITE, "%s: %s%s%s", s->writing, cause, kept[0] ? "; " : "", kept);
 }
 
 /* What the results file part (FILE.part) that could not be written further still holds, for the
@@ -162,16 +168,33 @@ PetscErrorCode AdhOutputRemove_Private(AdhSolver s, const char name[])
   PetscFunctionReturn(0);
 }
 
-/* The HDF5 file open in *v, at path part, closed after a failed write without touching the file
-   on disk again: this rank's descriptors of it are first pointed at an anonymous file in memory,
-   so that what HDF5 writes as it closes (the metadata it still holds) goes there. The file on
-   disk stays as the failed write left it (after a refused reservation: as after the last state),
-   and HDF5 closes cleanly (a close that fails leaves HDF5 to crash when MPI ends). Collective. */
+static PetscBool ending_without_mpi = PETSC_FALSE;
+
+/* Registered with PetscRegisterFinalize(): the process ends in PetscFinalize(), before MPI does. */
+static PetscErrorCode EndWithoutMPIFinalize(void)
+{
+  fflush(NULL);
+  _exit(1);
+  return 0;
+}
+
+/* The HDF5 file open in *v, let go of after a failed write without touching the file on disk
+   again: this rank's descriptors of it are first pointed at an anonymous file in memory, so that
+   whatever HDF5 still writes goes there. The file on disk stays as the failed write left it
+   (after a refused reservation: as after the last state).
+
+   On one rank the file is then closed. On several it cannot be: after a failed write, parallel
+   HDF5's close flushes its metadata cache with a barrier that the ranks whose cache is broken
+   never reach (checked: a write failed on every rank before the file's first flush, and rank 0
+   waits there for ever; HDF5 would try again at the end of MPI, with the same result). So the
+   viewer is left open and the job ends in PetscFinalize(), before MPI's end, with status 1 on
+   every rank: the error goes up and is told as usual first, and there is no MPI_Abort banner.
+   Collective. */
 PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v)
 {
-  const char    *part;
-  MPI_Comm       comm;
-  PetscErrorCode ierr;
+  const char *part;
+  MPI_Comm    comm;
+  PetscMPIInt size;
 
   PetscFunctionBegin;
   if (!*v) PetscFunctionReturn(0);
@@ -200,6 +223,14 @@ PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v)
     if (sink >= 0) close(sink);
   }
 #endif
+  PetscCall(PetscObjectGetComm((PetscObject)*v, &comm));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size > 1) {
+    *v = NULL; /* not destroyed: its close is HDF5's */
+    if (!ending_without_mpi) PetscCall(PetscRegisterFinalize(EndWithoutMPIFinalize));
+    ending_without_mpi = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   {
     /* a write that failed half-way left its dataset or group open: HDF5 would keep the file open
        for it, and close it only as MPI ends */
@@ -215,17 +246,11 @@ PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v)
       if (!closed) break;
     }
   }
-  PetscCall(PetscObjectGetComm((PetscObject)*v, &comm));
+  /* a close that fails (a write failed before the file's first flush) is retried by HDF5 as MPI
+     ends, and fails quietly there on one rank */
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = PetscViewerDestroy(v);
+  (void)PetscViewerDestroy(v);
   PetscCall(PetscPopErrorHandler());
-  /* Still open (a write that failed before the file's first flush). On one rank HDF5's second
-     attempt at the end of MPI fails quietly; on several it would hang: the error told, the job
-     ends here. */
-  if (ierr) {
-    PetscMPIInt size;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    if (size > 1) MPI_Abort(comm, 1);
-  }
+  *v = NULL;
   PetscFunctionReturn(0);
 }

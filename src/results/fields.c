@@ -116,9 +116,9 @@ PetscErrorCode AdhOutputWriteFields_Private(AdhSolver s, PetscViewer viewer, Pet
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write the fields of state %" PetscInt_FMT " to %s: %s; %s", state, part, strerror(err), kept);
   PetscCall(PetscRealloc((frame + 1) * sizeof(PetscInt), &s->field_states));
   s->field_states[s->nfield_states++] = state;
-  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept));
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept, PETSC_FALSE));
   ierr             = WriteFrame(s, viewer, frame, state);
-  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
+  ierr             = AdhOutputWriteEnd_Private(s, ierr);
   s->output_failed = (PetscBool)(s->output_failed || ierr);
   PetscCall(ierr);
   PetscFunctionReturn(0);

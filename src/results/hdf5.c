@@ -75,6 +75,7 @@ PetscErrorCode AdhH5AgreeOnFailure_Private(AdhSolver s, PetscBool failed, PetscB
       AdhH5Cause_Private(cause);
       fprintf(stderr, "adhbem: error: %s: %s, on rank %d of %d alone (parallel HDF5 cannot go on from a write that fails on some ranks only: the job ends)%s%s\n", s->writing, cause, rank, size, s->writing_kept[0] ? "; " : "", s->writing_kept);
       fflush(stderr);
+      if (s->writing_discard) (void)remove(s->writing_part);
       _exit(1);
     }
   } else PetscCallMPI(MPI_Wait(&request, MPI_STATUS_IGNORE));

@@ -44,11 +44,15 @@ PetscErrorCode AdhOutputOpen_Private(AdhSolver s, const char file[], PetscViewer
     PetscCall(AdhOutputRemove_Private(s, part));
   }
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s", part, strerror(err));
-  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, "no state was written"));
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, "no state was written", PETSC_TRUE));
   ierr             = Begin(s, *viewer, file);
-  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, "no state was written");
+  ierr             = AdhOutputWriteEnd_Private(s, ierr);
   s->output_failed = (PetscBool)(s->output_failed || ierr);
-  PetscCall(ierr); /* the caller closes *viewer as it is (AdhOutputAbandon_Private) */
+  if (ierr) { /* nothing in it that could be read: not left behind either */
+    PetscCall(AdhOutputAbandon_Private(viewer));
+    PetscCall(AdhOutputRemove_Private(s, part));
+  }
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 
@@ -150,9 +154,9 @@ PetscErrorCode AdhOutputAppend_Private(AdhSolver s, PetscViewer v)
     PetscCall(AdhOutputReleaseReserve_Private(s, part));
   }
   PetscCheck(!err, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: cannot write %s: %s; %s", part, strerror(err), kept);
-  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept));
+  PetscCall(AdhOutputWriteBegin_Private(s, "-adh_output", part, kept, PETSC_FALSE));
   ierr             = AppendRows(s, v);
-  ierr             = AdhOutputWriteEnd_Private(s, ierr, "-adh_output", part, kept);
+  ierr             = AdhOutputWriteEnd_Private(s, ierr);
   s->output_failed = (PetscBool)(s->output_failed || ierr);
   PetscCall(ierr);
   PetscCall(AdhJournalWrite_Private(s, s->rows_written, s->curve.n));

@@ -28,8 +28,8 @@ PETSC_INTERN PetscErrorCode AdhOutputWriteTextFile_Private(AdhSolver s, const ch
 /* diskspace.c: space reserved before a write, and a write that fails told once */
 PETSC_INTERN PetscErrorCode AdhOutputReserve_Private(AdhSolver s, const char part[], size_t bytes, int *err);
 PETSC_INTERN PetscErrorCode AdhOutputReleaseReserve_Private(AdhSolver s, const char part[]);
-PETSC_INTERN PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[]);
-PETSC_INTERN PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr, const char option[], const char part[], const char kept[]);
+PETSC_INTERN PetscErrorCode AdhOutputWriteBegin_Private(AdhSolver s, const char option[], const char part[], const char kept[], PetscBool discard);
+PETSC_INTERN PetscErrorCode AdhOutputWriteEnd_Private(AdhSolver s, PetscErrorCode ierr);
 PETSC_INTERN PetscErrorCode AdhOutputKept_Private(AdhSolver s, const char part[], char kept[], size_t len);
 PETSC_INTERN PetscErrorCode AdhOutputRemove_Private(AdhSolver s, const char name[]);
 PETSC_INTERN PetscErrorCode AdhOutputAbandon_Private(PetscViewer *v);

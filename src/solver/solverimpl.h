@@ -315,8 +315,11 @@ struct _p_AdhSolver {
      FILE.csv.part, appended by rank 0), and the pull-off state its attributes describe */
   PetscInt   rows_written, pull_off_written, apart_written, full_written; /* the states the pull-off attributes describe */
   PetscBool  output_failed; /* a write into the results file failed: it is closed as it is, not written further */
-  char       writing[PETSC_MAX_PATH_LEN + 64];  /* the write under way ("-adh_output: cannot write F.part") and */
-  char       writing_kept[3 * PETSC_MAX_PATH_LEN]; /* what the file keeps, for a failure one rank must tell alone */
+  /* the writes under way (AdhOutputWriteBegin_Private), for the error if they fail */
+  char      writing[PETSC_MAX_PATH_LEN + 64];     /* "-adh_output: cannot write F.part" */
+  char      writing_part[PETSC_MAX_PATH_LEN + 8]; /* F.part */
+  char      writing_kept[3 * PETSC_MAX_PATH_LEN]; /* what is left if they fail */
+  PetscBool writing_discard;                      /* F.part holds nothing to keep: removed by a rank that ends the job alone */
   FILE      *journal;
 
   /* stopping a path on a signal (interface/path.c): the checks are on while the path runs with its

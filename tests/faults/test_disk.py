@@ -10,6 +10,7 @@ mpirun, so these tests run serially."""
 import os
 import re
 import subprocess
+import sys
 
 import h5py
 import pytest
@@ -135,14 +136,36 @@ def test_io_error_on_some_ranks(tmp_path, failwrite, ranks):
     check_kept(tmp_path, line)
 
 
-def test_io_error_on_the_first_write(tmp_path, failwrite):
-    """EIO before the file's first flush (its superblock), on one rank: one line, no MPI_Abort."""
-    p = run(tmp_path, "-adh_output", "out.h5", ranks=1, fault=("EIO", 0, "out.h5"), lib=failwrite)
+@pytest.mark.parametrize("ranks", [1, 2, 3])
+def test_io_error_on_the_first_write(tmp_path, failwrite, ranks):
+    """EIO before the file's first flush (its superblock), on every rank: one line, no MPI_Abort, no hang."""
+    p = run(tmp_path, "-adh_output", "out.h5", ranks=ranks, fault=("EIO", 0, "out.h5"), lib=failwrite)
     check_failed_cleanly(p, r"^adhbem: error: -adh_output: cannot write out\.h5\.part: .*input/output error.*; no state was written")
+    assert not list(tmp_path.glob("out*")), "a file that holds no state is not left behind"
 
 
-def test_io_error_on_a_checkpoint(tmp_path, failwrite):
-    p = run(tmp_path, "-adh_output", "out.h5", "-adh_checkpoint", "ck.h5", ranks=1, fault=("EIO", 100_000, "ck.h5"), lib=failwrite)
+def test_io_error_on_the_first_write_from_python(tmp_path, failwrite):
+    """The same from a script on 2 ranks: the exception, told once, and status 1 on every rank."""
+    script = tmp_path / "job.py"
+    script.write_text("import adhbem\n"
+                      "adhbem.Solver(n=64, radius=1, gamma=2e-3, steps=4, output='out.h5').solve_path()\n")
+    cmd = ["mpirun", "-n", "2", "-x", "PYTHONPATH"]
+    for name, value in [("LD_PRELOAD", failwrite), ("ADHBEM_FAULT_ERRNO", "EIO"), ("ADHBEM_FAULT_AFTER", "0"),
+                        ("ADHBEM_FAULT_PATH", "out.h5"), ("ADHBEM_FAULT_OP", "write")]:
+        cmd += ["-x", f"{name}={value}"]
+    p = subprocess.run(cmd + [sys.executable, str(script)], cwd=tmp_path, env=ENV, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 1, p.stderr[-2000:]
+    assert "MPI_ABORT" not in p.stderr and "alone" not in p.stderr, p.stderr[-2000:]
+    assert p.stderr.count("Traceback") == 1, p.stderr[-2000:]
+    assert re.search(r"^OSError: -adh_output: cannot write out\.h5\.part: .*input/output error", p.stderr, re.M), p.stderr[-2000:]
+    assert not list(tmp_path.glob("out*"))
+
+
+@pytest.mark.parametrize("ranks,after", [(1, 100_000), (2, 100_000), (3, 100_000), (2, 0), (3, 0)])
+def test_io_error_on_a_checkpoint(tmp_path, failwrite, ranks, after):
+    """EIO in a checkpoint after some bytes (a rank fails alone) or on the first write (all do):
+    one line, and the checkpoint's part removed."""
+    p = run(tmp_path, "-adh_output", "out.h5", "-adh_checkpoint", "ck.h5", ranks=ranks, fault=("EIO", after, "ck.h5"), lib=failwrite)
     check_failed_cleanly(p, r"^adhbem: error: -adh_checkpoint: cannot write ck\.h5\.part: .*input/output error")
     assert not (tmp_path / "ck.h5.part").exists()
 

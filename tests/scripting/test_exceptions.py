@@ -91,7 +91,6 @@ def test_no_c_traceback_unless_asked():
     (dict(path=[0.01, float("nan")]), ValueError, "path: NaN is not a value"),
     (dict(path=""), ValueError, "path: an empty sequence"),
     (dict(path="0.01,deep"), ValueError, "path: expected a real number, got 'deep'"),
-    (dict(path=[0, 0.01, 0.01]), ValueError, "-adh_path: points 1 and 2 are both 0.01: a leg of no length"),
 ])
 def test_bad_keyword_values_name_the_keyword(kwargs, kind, words):
     """Nothing is cast silently or replaced by a default: path=[] ran the default path."""

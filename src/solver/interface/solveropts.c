@@ -191,7 +191,6 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCheck(s->progress >= 0 && !PetscIsNanReal(s->progress), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)s->progress);
   PetscCheck(s->steps >= 1, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_steps must be >= 1, got %" PetscInt_FMT, s->steps);
   for (PetscInt k = 0; k < s->npath; k++) PetscCheck(!PetscIsInfOrNanReal(s->path[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_path: point %" PetscInt_FMT " is not finite", k);
-  for (PetscInt k = 1; k < s->npath; k++) PetscCheck(s->path[k] != s->path[k - 1], s->comm, PETSC_ERR_ARG_WRONG, "-adh_path: points %" PetscInt_FMT " and %" PetscInt_FMT " are both %g: a leg of no length (each point after the first is where a leg ends)", k - 1, k, (double)s->path[k]);
   if (s->ksp) PetscCall(KSPSetFromOptions(s->ksp));
   PetscFunctionReturn(0);
 }

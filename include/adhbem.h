@@ -317,8 +317,32 @@ typedef struct {
   PetscInt  full_contact;            /* the first state in full contact, every point of the grid in the contact set (-1: none) */
   PetscInt  last_points;             /* the points in contact at the last state (the path ended with them when not apart) */
   PetscInt  stopped;                 /* the state at which a pull-off ended the path with legs left (-adh_stop_at_pulloff; -1: it did not) */
+  PetscInt  unresolved;              /* why the grid does not resolve it there: ADH_UNRESOLVED_* flags (0: it does, or no state carried tension) */
 } AdhResolution;
+/* The verdict's rule: the grid resolves the adhesion at the state of largest tension unless */
+#define ADH_UNRESOLVED_PATCHES    1 /* more than 10% of the tension is carried by patches of fewer than ADH_RESOLVED_PATCH points */
+#define ADH_UNRESOLVED_ASPERITIES 2 /* the set-up estimate of the smallest asperities' (or the sphere's) JKR radius is under 10 grid spacings */
+#define ADH_UNRESOLVED_ZONE       4 /* a sphere's cohesive zone is under 10 grid spacings wide */
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
+/* Whether a rough surface is sticky, estimated at set-up from its heights (a periodic cell): the
+   elastic energy of full contact against the work of adhesion (Persson & Tosatti 2001), and with a
+   finite-range criterion the Pastewka-Robbins criterion (2014) and the generalised Tabor parameter. */
+typedef struct {
+  PetscBool estimated;           /* the estimate exists (a rough surface or topography on a periodic cell, with adhesion) */
+  PetscReal rms_slope;           /* h'_rms, the rms of |grad h| */
+  PetscReal rms_curvature;       /* h''_rms, the rms of the mean curvature (half the Laplacian of h) */
+  PetscReal full_contact_energy; /* U_el / A0, the elastic energy per area that flattens the surface (full contact) */
+  PetscReal work_of_adhesion;    /* dgamma (with a field: its mean) */
+  PetscReal persson_tosatti;     /* U_el / (dgamma A0): below 1 full contact costs less than the adhesion gives */
+  PetscReal range;               /* the criterion's range Delta r (0: a zero-range criterion) */
+  PetscReal pastewka_robbins;    /* h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3): below 1 sticky (0: zero range) */
+  PetscReal tabor;               /* the generalised Tabor parameter (R dgamma^2 / (E*^2 Delta r^3))^(1/3), R = 1/h''_rms (0: zero range) */
+  PetscBool sticks_everywhere;   /* persson_tosatti < 1 */
+  PetscBool sticky;              /* sticks_everywhere, or pastewka_robbins < 1 */
+} AdhStickiness;
+PETSC_EXTERN PetscErrorCode AdhSolverGetStickiness(AdhSolver, AdhStickiness *);
+/* The line on the stickiness ("adhbem: stickiness: ..."; nothing without an estimate). */
+PETSC_EXTERN PetscErrorCode AdhSolverStickinessView(AdhSolver, PetscViewer);
 /* The lines on how well the grid resolves the adhesion (nothing without tension; a run that never
    touched says so). */
 PETSC_EXTERN PetscErrorCode AdhSolverResolutionView(AdhSolver, PetscViewer);

@@ -230,6 +230,7 @@ static PetscErrorCode Run(AdhSolver solver)
   PetscCall(CheckUnprefixedOptions());
   /* -adh_view [ascii[:file]]: PETSc's viewer options, as -ksp_view's */
   PetscCall(PetscObjectViewFromOptions((PetscObject)solver, NULL, "-adh_view"));
+  PetscCall(AdhSolverStickinessView(solver, NULL)); /* a rough surface's: before the path */
   PetscCall(AdhSolverSolvePath(solver));
   PetscCall(AdhSolverGetCurve(solver, &curve));
   {

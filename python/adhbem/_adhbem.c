@@ -715,7 +715,26 @@ static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
   AdhResolution r;
   if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetResolution(solver, &r));
-  return Py_BuildValue("{s:d,s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n}", "asperity_contact_radius", (double)r.asperity_contact_radius, "asperity_tabor", (double)r.asperity_tabor, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped);
+  return Py_BuildValue("{s:d,s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n,s:[sss]}", "asperity_contact_radius", (double)r.asperity_contact_radius, "asperity_tabor", (double)r.asperity_tabor, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped, "unresolved", r.unresolved & ADH_UNRESOLVED_PATCHES ? "patches" : NULL, r.unresolved & ADH_UNRESOLVED_ASPERITIES ? "asperities" : NULL, r.unresolved & ADH_UNRESOLVED_ZONE ? "zone" : NULL);
+}
+
+/* Whether a rough surface is sticky, as the results file's attributes name it (None: no estimate). */
+static PyObject *py_solver_stickiness(PyObject *self, PyObject *args)
+{
+  AdhSolver     solver;
+  AdhStickiness st;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
+  PyPetscCall(AdhSolverGetStickiness(solver, &st));
+  if (!st.estimated) Py_RETURN_NONE;
+  return Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:O,s:O}", "rms_slope", (double)st.rms_slope, "rms_curvature", (double)st.rms_curvature, "full_contact_energy", (double)st.full_contact_energy, "work_of_adhesion", (double)st.work_of_adhesion, "persson_tosatti", (double)st.persson_tosatti, "range", (double)st.range, "pastewka_robbins", (double)st.pastewka_robbins, "generalized_tabor", (double)st.tabor, "sticks_everywhere", st.sticks_everywhere ? Py_True : Py_False, "sticky", st.sticky ? Py_True : Py_False);
+}
+
+static PyObject *py_solver_stickiness_view(PyObject *self, PyObject *args)
+{
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
+  PyPetscCall(AdhSolverStickinessView(solver, NULL));
+  Py_RETURN_NONE;
 }
 
 static PyObject *py_solver_resolution_view(PyObject *self, PyObject *args)
@@ -754,6 +773,8 @@ static PyMethodDef methods[] = {
   {"solver_grid", py_solver_grid, METH_VARARGS, "solver_grid(s) -> PETSc.Object: the solver's grid (class AdhGrid)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
+  {"solver_stickiness", py_solver_stickiness, METH_VARARGS, "solver_stickiness(s) -> dict of the stickiness estimate, or None"},
+  {"solver_stickiness_view", py_solver_stickiness_view, METH_VARARGS, "solver_stickiness_view(s): prints the stickiness line (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},
   {"rough_surface", py_rough_surface, METH_VARARGS, "rough_surface(comm, Nx, Ny, Lx, Ly, prefix) -> (PETSc.Vec, dict); options read with the prefix"},
   {"option_help", py_option_help, METH_VARARGS, "option_help(prefix) -> the -help text of a solver's options under prefix"},

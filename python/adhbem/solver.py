@@ -312,7 +312,8 @@ class Solver:
 
         With the option ``output``, writes the results file as it goes (and the fields of its
         states with the option ``fields``); ``checkpoint`` and ``restart`` work as for the
-        executable. At the end it prints how well the grid resolves the adhesion (``resolution``).
+        executable. Before the path it prints a rough surface's stickiness (``stickiness``), at
+        the end how well the grid resolves the adhesion (``resolution``).
 
         Parameters
         ----------
@@ -320,7 +321,7 @@ class Solver:
             ``None`` (default): a progress bar with the time left on rank 0 when tqdm is
             installed and the output is a terminal, else the library's progress lines (one after
             ``progress`` seconds, the option, then now and then). ``True``: the bar wherever tqdm
-            is installed. ``False``: quiet: no progress and no resolution lines.
+            is installed. ``False``: quiet: no progress, no stickiness and no resolution lines.
 
         Returns
         -------
@@ -335,6 +336,8 @@ class Solver:
             use_bar = comm.bcast(_have_tqdm() and (progress is True or sys.stderr.isatty()), root=0)
         bar = self._progress_bar() if use_bar else None
         before = _adhbem.solver_progress(self._s, 0.0) if (use_bar or progress is False) else None
+        if progress is not False:
+            _adhbem.solver_stickiness_view(self._s)  # a rough surface's, before the path (as the executable)
         try:
             _adhbem.solver_solve_path(self._s)
         finally:
@@ -462,15 +465,46 @@ class Solver:
           cohesive zone covers there, and for a sphere how many grid spacings wide the zone is
           (under 10 the pull-off force depends on the grid; 0.0: no zone);
         - ``resolved``: the verdict (``None`` before a state carried tension);
+        - ``unresolved``: why not, the rule's parts that failed there: ``"patches"`` (more than 10% of
+          the tension on patches under 314 elements), ``"asperities"`` (``asperity_contact_radius``
+          under 10), ``"zone"`` (a sphere's cohesive zone under 10 spacings wide); empty when resolved;
         - ``apart``: the first curve row where the surfaces came apart (-1: they did not, and the
           largest tension is no pull-off force); ``full_contact``: the first row in full contact,
           every grid point in the set (-1: none); ``last_points``: the points in contact at the
           last row; ``stopped``: the row at which a pull-off ended ``solve_path()`` with legs
           left (the option ``stop_at_pulloff``, true by default; -1: it did not).
 
-        The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``, ...
+        The results file holds the same as ``asperity_contact_radius``, ``adhesion_resolved``,
+        ``adhesion_unresolved_by`` (the reasons in words), ...
         """
-        return _adhbem.solver_resolution(self._s)
+        r = _adhbem.solver_resolution(self._s)
+        r["unresolved"] = [why for why in r["unresolved"] if why]
+        return r
+
+    @property
+    def stickiness(self) -> Optional[dict]:
+        """Whether a rough surface is sticky, estimated at set-up from its heights (the line
+        ``solve_path()`` prints first), as a dict; ``None`` without an estimate (it is made for a
+        rough surface, a topography file or an array on a periodic cell, with adhesion):
+
+        - ``rms_slope``, ``rms_curvature``: h'_rms (the rms of the gradient's length) and h''_rms
+          (the rms of the mean curvature, half the Laplacian), as SurfaceTopography defines them;
+        - ``full_contact_energy``: U_el / A0, the elastic energy per area that flattens the surface;
+        - ``work_of_adhesion``: dgamma (with a ``gamma_field``, its mean);
+        - ``persson_tosatti``: U_el / (dgamma A0) (Persson & Tosatti 2001); below 1 the surface sticks
+          everywhere once in contact, and a compressive mean pressure is reached only in full contact;
+        - ``range``: the criterion's range Delta r (``dugdale``: dgamma / dugdale_stress;
+          ``exponential``: exponential_range; 0.0 for the zero-range criteria);
+        - ``pastewka_robbins``: h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3)
+          (Pastewka & Robbins 2014, eq. 10); below 1 sticky (0.0 without a range);
+        - ``generalized_tabor``: (R dgamma^2 / (E*^2 Delta r^3))^(1/3) with R = 1 / h''_rms (0.0
+          without a range);
+        - ``sticks_everywhere``, ``sticky``: the verdicts (Persson-Tosatti below 1; that, or
+          Pastewka-Robbins below 1).
+
+        The results file holds the same as root attributes ``stickiness_persson_tosatti``, ...
+        """
+        return _adhbem.solver_stickiness(self._s)
 
     def contact_mask(self) -> PETSc.Vec:
         """A new Vec on the grid: 1.0 on the points of the contact set, 0.0 elsewhere

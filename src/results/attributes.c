@@ -51,7 +51,7 @@ PetscErrorCode AdhOutputWriteArrayTopography_Private(AdhSolver s, PetscViewer v)
    the grid resolves it (the curve's statistics at that state; absent without tension). */
 PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscInt k)
 {
-  const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved", "pull_off_cohesive_width"};
+  const char *const resolution[] = {"pull_off_small_patch_tension", "pull_off_smallest_tensile_patch", "adhesion_resolved", "pull_off_cohesive_width", "adhesion_unresolved_by"};
   const PetscReal   largest      = k >= 0 ? -s->curve.state[k].force : 0.0;
   AdhResolution     r;
   PetscReal         pull_off;
@@ -67,12 +67,18 @@ PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscIn
   if (k >= 0) {
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[0], PETSC_REAL, &s->curve.state[k].small_patch_tension));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[1], PETSC_INT, &s->curve.state[k].smallest_tensile_patch));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[2], PETSC_BOOL, &(PetscBool){AdhSolverResolves_Private(s, &s->curve.state[k])}));
+    {
+      const PetscInt why = AdhSolverUnresolved_Private(s, &s->curve.state[k]);
+      char           words[512];
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[2], PETSC_BOOL, &(PetscBool){!why}));
+      PetscCall(AdhSolverUnresolvedWords_Private(s, &s->curve.state[k], why, words, sizeof(words)));
+      PetscCall(AdhH5WriteStringAttribute_Private(v, resolution[4], words)); /* "" when resolved */
+    }
     if (s->curve.state[k].cohesive_area > 0 && s->indenter.type == ADH_INDENTER_SPHERE) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[3], PETSC_REAL, &(PetscReal){AdhSolverCohesiveWidth_Private(s, &s->curve.state[k])}));
   } else { /* a restart's file may hold those of states after its checkpoint */
     hid_t file_id;
     PetscCall(PetscViewerHDF5GetFileId(v, &file_id));
-    for (PetscInt j = 0; j < 4; j++)
+    for (PetscInt j = 0; j < 5; j++)
       if (H5Aexists_by_name(file_id, "/", resolution[j], H5P_DEFAULT) > 0) ADH_H5(H5Adelete_by_name(file_id, "/", resolution[j], H5P_DEFAULT));
   }
   s->pull_off_written = k;
@@ -129,6 +135,19 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   if (s->pops.base.view) PetscCall(s->pops.base.view(s, v));
   if (s->asperity_ac > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_contact_radius", PETSC_REAL, &s->asperity_ac));
   if (s->asperity_tabor > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "asperity_tabor", PETSC_REAL, &s->asperity_tabor));
+  if (s->stickiness.estimated) { /* a rough surface's stickiness (stickiness.c) */
+    const AdhStickiness *st = &s->stickiness;
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_rms_slope", PETSC_REAL, &st->rms_slope));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_rms_curvature", PETSC_REAL, &st->rms_curvature));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_full_contact_energy", PETSC_REAL, &st->full_contact_energy));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_persson_tosatti", PETSC_REAL, &st->persson_tosatti));
+    if (st->range > 0) {
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_pastewka_robbins", PETSC_REAL, &st->pastewka_robbins));
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_tabor", PETSC_REAL, &st->tabor));
+    }
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "sticks_everywhere", PETSC_BOOL, &st->sticks_everywhere));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "sticky", PETSC_BOOL, &st->sticky));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_rtol", PETSC_REAL, &s->cascade_rtol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_apart", PETSC_INT, &s->cascade_apart));

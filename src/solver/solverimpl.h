@@ -99,6 +99,9 @@ typedef struct {
      of adhesion dgamma, and the parameter's name ("Tabor's mu", "Maugis' lambda") */
   PetscReal (*tabor)(AdhSolver, PetscReal R, PetscReal dgamma);
   const char *tabor_name;
+  /* Optional, a finite-range criterion's: the range of its attraction for work of adhesion dgamma
+     (the gap over which the work is done; the stickiness report's Delta r) */
+  PetscReal (*range)(AdhSolver, PetscReal dgamma);
 } AdhCriterionOps;
 
 /* The energy minimisation of a step under a cohesive law (interface/minimize.c): its options, in
@@ -210,6 +213,7 @@ struct _p_AdhSolver {
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
   PetscReal       asperity_tabor;   /* a finite-range criterion's Tabor parameter of those asperities (0: none) */
+  AdhStickiness   stickiness;       /* the set-up estimate of a rough surface's stickiness (stickiness.c) */
 
   /* contact set: in_set[k] for the local points, and the same as a PETSc IS */
   char     *in_set;
@@ -426,7 +430,10 @@ PETSC_INTERN PetscErrorCode AdhSolverSetFromOverlap_Private(AdhSolver, PetscReal
 PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, PetscReal d);
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
+PETSC_INTERN PetscInt       AdhSolverUnresolved_Private(AdhSolver, const AdhState *);
+PETSC_INTERN PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver, const AdhState *, PetscInt, char[], size_t);
 PETSC_INTERN PetscReal      AdhSolverCohesiveWidth_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhCurveDestroy_Private(AdhCurve *);
 #endif

@@ -117,3 +117,29 @@ def test_an_array_topography_on_the_default_free_boundary_warns(tmp_path):
                            env=python_env(), timeout=120)
         assert r.returncode == 0, r.stderr
         assert ("warning: a topography array on the default free boundary" in r.stdout) == warns, (boundary, r.stdout)
+
+
+def verdict_run(tmp_path, n, **extra):
+    """A JKR sphere on an n^2 grid from Python, its results file's verdict attributes and its last line."""
+    out = tmp_path / f"v{n}.h5"
+    s = adhbem.Solver(n=n, size=1.0, radius=1.0, gamma=2e-3, start="adhesive", path=[0.0, 0.02, -0.03], steps=10,
+                      output=str(out), **extra)
+    s.solve_path()
+    with h5py.File(out, "r") as f:
+        attrs = (bool(f.attrs["adhesion_resolved"]), f.attrs["adhesion_unresolved_by"])
+    return s.resolution, attrs
+
+
+def test_the_verdict_says_which_part_of_the_rule_failed(tmp_path, capfd):
+    """One rule, said the same way in the last line, the results file and Python: a coarse grid
+    whose JKR radius is under 10 spacings is not resolved *because of it*, in words and as a flag;
+    a fine one is resolved, with no reason."""
+    serial_only()
+    r, (resolved, why) = verdict_run(tmp_path, 16)
+    line = [l for l in capfd.readouterr().out.splitlines() if "at the largest tension" in l][-1]
+    assert r["asperity_contact_radius"] < 10 and r["resolved"] is False and not resolved
+    assert "asperities" in r["unresolved"]
+    words = f"the JKR contact radius of the sphere, {r['asperity_contact_radius']:.3g} grid spacings, under 10"
+    assert words in why and f"depends on the grid ({why})" in line, (why, line)
+    r, (resolved, why) = verdict_run(tmp_path, 64)
+    assert r["resolved"] is True and resolved and r["unresolved"] == [] and why == ""

@@ -92,12 +92,44 @@ PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
    (first order: measured on Maugis' sphere at lambda 1, about 0.4 / width relative, 4% at 10). */
 #define ADH_RESOLVED_ZONE 10
 
-/* Whether the grid resolves the adhesion at state st: the patches that carry the tension are large,
-   and so are the smallest asperities' contacts. */
-PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
+/* Why the grid does not resolve the adhesion at state st (ADH_UNRESOLVED_* flags; 0: it does): the
+   patches that carry the tension must be large, and so must the smallest asperities' contacts and
+   a sphere's cohesive zone. The one rule of every verdict (line, results file, Python). */
+PetscInt AdhSolverUnresolved_Private(AdhSolver s, const AdhState *st)
 {
   const PetscReal width = AdhSolverCohesiveWidth_Private(s, st);
-  return (PetscBool)(st->small_patch_tension <= ADH_RESOLVED_SHARE && !(s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS) && !(width > 0 && width < ADH_RESOLVED_ZONE));
+  PetscInt        why   = 0;
+  if (st->small_patch_tension > ADH_RESOLVED_SHARE) why |= ADH_UNRESOLVED_PATCHES;
+  if (s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS) why |= ADH_UNRESOLVED_ASPERITIES;
+  if (width > 0 && width < ADH_RESOLVED_ZONE) why |= ADH_UNRESOLVED_ZONE;
+  return why;
+}
+
+PetscBool AdhSolverResolves_Private(AdhSolver s, const AdhState *st)
+{
+  return (PetscBool)!AdhSolverUnresolved_Private(s, st);
+}
+
+/* The reasons in flags why, as words, joined by "; " ("" for none). */
+PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver s, const AdhState *st, PetscInt why, char words[], size_t len)
+{
+  char part[160];
+
+  PetscFunctionBegin;
+  words[0] = 0;
+  if (why & ADH_UNRESOLVED_PATCHES) {
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%.0f%% of the tension on patches of fewer than %d elements, over 10%%", 100.0 * (double)st->small_patch_tension, ADH_RESOLVED_PATCH));
+    PetscCall(PetscStrlcat(words, part, len));
+  }
+  if (why & ADH_UNRESOLVED_ASPERITIES) {
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe JKR contact radius of %s, %.3g grid spacings, under 10", words[0] ? "; " : "", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities", (double)s->asperity_ac));
+    PetscCall(PetscStrlcat(words, part, len));
+  }
+  if (why & ADH_UNRESOLVED_ZONE) {
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe cohesive zone, %.3g grid spacings wide, under 10", words[0] ? "; " : "", (double)AdhSolverCohesiveWidth_Private(s, st)));
+    PetscCall(PetscStrlcat(words, part, len));
+  }
+  PetscFunctionReturn(0);
 }
 
 /* A sphere's cohesive zone at state st: the width of the annulus around the contact's disk, in grid
@@ -161,7 +193,8 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
     r->force                  = st->force;
     r->small_patch_tension    = st->small_patch_tension;
     r->smallest_tensile_patch = st->smallest_tensile_patch;
-    r->resolved               = AdhSolverResolves_Private(s, st);
+    r->unresolved             = AdhSolverUnresolved_Private(s, st);
+    r->resolved               = (PetscBool)!r->unresolved;
     r->cohesive_elements      = st->cohesive_area / (s->grid->hx * s->grid->hy); /* a finite-range criterion's zone */
     r->cohesive_width         = AdhSolverCohesiveWidth_Private(s, st);
   }
@@ -206,7 +239,7 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
 PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
 {
   AdhResolution r;
-  char          smallest[96];
+  char          smallest[96], why[512], verdict[640];
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
@@ -226,7 +259,11 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g) the whole grid is in contact: no contact edge, no pull-off to resolve\n", r.state, (double)r.force));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest,
-                                   r.resolved ? (r.apart >= 0 ? "the grid resolves the adhesion" : "the grid resolves the tension carried") : (r.apart >= 0 ? "the pull-off force depends on the grid; refine it (the same surface on a finer grid) until it no longer changes" : "the largest tension depends on the grid; refine it (the same surface on a finer grid) until it no longer changes")));
+  if (r.resolved) PetscCall(PetscStrncpy(verdict, r.apart >= 0 ? "the grid resolves the adhesion" : "the grid resolves the tension carried", sizeof(verdict)));
+  else {
+    PetscCall(AdhSolverUnresolvedWords_Private(s, &s->curve.state[r.state], r.unresolved, why, sizeof(why)));
+    PetscCall(PetscSNPrintf(verdict, sizeof(verdict), "the %s depends on the grid (%s); refine it (the same surface on a finer grid) until it no longer changes", r.apart >= 0 ? "pull-off force" : "largest tension", why));
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, verdict));
   PetscFunctionReturn(0);
 }

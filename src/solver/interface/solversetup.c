@@ -48,6 +48,7 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
   if (s->setup) {
     PetscCall(AdhSolverSetUp(s)); /* refreshes Sigma */
     PetscCall(AdhSolverEstimateResolution_Private(s));
+    PetscCall(AdhSolverEstimateStickiness_Private(s));
     PetscCall(AdhSolverSetLocalWidth_Private(s)); /* -adh_cascade_local's window, from that estimate */
   }
   PetscFunctionReturn(0);
@@ -137,6 +138,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   s->profile_version++;
   PetscCall(AdhSolverEstimateResolution_Private(s));
+  PetscCall(AdhSolverEstimateStickiness_Private(s));
   PetscCall(AdhSolverSetLocalWidth_Private(s)); /* -adh_cascade_local's window, from that estimate */
   PetscCall(AdhSolverClearContact_Private(s));
   PetscCall(VecCopy(s->h, s->g)); /* the undeformed gap, g = h - d */

@@ -230,6 +230,12 @@ static PetscReal Tabor_Dugdale(AdhSolver s, PetscReal R, PetscReal dgamma)
   return 2.0 * ((Dugdale *)s->crops.data)->s0 * PetscCbrtReal(R / (PETSC_PI * dgamma * K * K));
 }
 
+/* The range of its attraction: the gap h0 = dgamma / s0 at which the stress s0 ends. */
+static PetscReal Range_Dugdale(AdhSolver s, PetscReal dgamma)
+{
+  return dgamma / ((Dugdale *)s->crops.data)->s0;
+}
+
 /* Its line of -adh_view, and its attributes in the results file. */
 static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
 {
@@ -316,6 +322,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
   s->crops.begin               = Begin_Dugdale;
   s->crops.tabor               = Tabor_Dugdale;
   s->crops.tabor_name          = "Maugis' lambda";
+  s->crops.range               = Range_Dugdale;
   s->crops.base.setfromoptions = SetFromOptions_Dugdale;
   s->crops.base.view           = View_Dugdale;
   s->crops.base.setup          = SetUp_Dugdale;

@@ -117,6 +117,13 @@ static PetscReal Tabor_Exponential(AdhSolver s, PetscReal R, PetscReal dgamma)
   return PetscCbrtReal(R * dgamma * dgamma / (s->Estar * s->Estar * rho * rho * rho));
 }
 
+/* The range of its attraction: rho, whatever dgamma. */
+static PetscReal Range_Exponential(AdhSolver s, PetscReal dgamma)
+{
+  (void)dgamma;
+  return ((Exponential *)s->crops.data)->rho;
+}
+
 /* Its lines of -adh_view, and its attributes in the results file. */
 static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
 {
@@ -186,6 +193,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
   s->crops.peak                = Peak_Exponential;
   s->crops.tabor               = Tabor_Exponential;
   s->crops.tabor_name          = "Tabor's mu";
+  s->crops.range               = Range_Exponential;
   s->crops.base.setfromoptions = SetFromOptions_Exponential;
   s->crops.base.view           = View_Exponential;
   s->crops.base.setup          = SetUp_Exponential;

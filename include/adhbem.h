@@ -349,6 +349,11 @@ PETSC_EXTERN PetscErrorCode AdhSolverResolutionView(AdhSolver, PetscViewer);
 /* Writes the curve and parameters to FILE.h5 and FILE.csv (with -adh_fields, the fields of
    every step too). Files appear whole or not at all. */
 PETSC_EXTERN PetscErrorCode AdhSolverWriteOutput(AdhSolver, const char file[]);
+/* A results file written state by state from the caller's loop of AdhSolverStart()/AdhSolverStep():
+   opened, a call after each recorded state (its row, and its fields with -adh_fields), closed. */
+PETSC_EXTERN PetscErrorCode AdhSolverOutputBegin(AdhSolver, const char file[]);
+PETSC_EXTERN PetscErrorCode AdhSolverOutputRecord(AdhSolver);
+PETSC_EXTERN PetscErrorCode AdhSolverOutputEnd(AdhSolver, PetscBool complete);
 PETSC_EXTERN PetscErrorCode AdhSolverDestroy(AdhSolver *);
 
 #endif

@@ -696,6 +696,32 @@ static PyObject *py_solver_write(PyObject *self, PyObject *args)
   Py_RETURN_NONE;
 }
 
+static PyObject *py_solver_output_begin(PyObject *self, PyObject *args)
+{
+  AdhSolver   solver;
+  const char *file;
+  if (!PyArg_ParseTuple(args, "O&s", solver_arg, &solver, &file)) return NULL;
+  PyPetscCall(AdhSolverOutputBegin(solver, file));
+  Py_RETURN_NONE;
+}
+
+static PyObject *py_solver_output_record(PyObject *self, PyObject *args)
+{
+  AdhSolver solver;
+  if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
+  PyPetscCall(AdhSolverOutputRecord(solver));
+  Py_RETURN_NONE;
+}
+
+static PyObject *py_solver_output_end(PyObject *self, PyObject *args)
+{
+  AdhSolver solver;
+  int       complete;
+  if (!PyArg_ParseTuple(args, "O&p", solver_arg, &solver, &complete)) return NULL;
+  PyPetscCall(AdhSolverOutputEnd(solver, complete ? PETSC_TRUE : PETSC_FALSE));
+  Py_RETURN_NONE;
+}
+
 /* -adh_progress of a solver: set it when a value is given, and return the one before. */
 static PyObject *py_solver_progress(PyObject *self, PyObject *args)
 {
@@ -773,6 +799,9 @@ static PyMethodDef methods[] = {
   {"solver_grid", py_solver_grid, METH_VARARGS, "solver_grid(s) -> PETSc.Object: the solver's grid (class AdhGrid)"},
   {"solver_resolution", py_solver_resolution, METH_VARARGS, "solver_resolution(s) -> dict: how well the grid resolves the adhesion"},
   {"solver_resolution_view", py_solver_resolution_view, METH_VARARGS, "solver_resolution_view(s): prints the resolution lines (rank 0)"},
+  {"solver_output_begin", py_solver_output_begin, METH_VARARGS, "solver_output_begin(s, file): opens a results file written state by state"},
+  {"solver_output_record", py_solver_output_record, METH_VARARGS, "solver_output_record(s): writes the states recorded since the last call (the last one's fields too)"},
+  {"solver_output_end", py_solver_output_end, METH_VARARGS, "solver_output_end(s, complete): closes it under its name"},
   {"solver_stickiness", py_solver_stickiness, METH_VARARGS, "solver_stickiness(s) -> dict of the stickiness estimate, or None"},
   {"solver_stickiness_view", py_solver_stickiness_view, METH_VARARGS, "solver_stickiness_view(s): prints the stickiness line (rank 0)"},
   {"compliance", py_compliance, METH_VARARGS, "compliance(comm, Nx, Ny, Lx, Ly, Estar, boundary) -> PETSc.Mat"},

@@ -390,9 +390,11 @@ class Solver:
         Notes
         -----
         All ranks must take the same states: a ``break`` on one rank only leaves the others
-        waiting. No results file is written as it goes: ``write(FILE)`` after the loop writes the
-        curve and the last state's fields; the options ``output``, ``checkpoint`` and ``restart``
-        are ``solve_path()``'s. As in ``solve_path()``, a pull-off ends the path unless the option
+        waiting. With the option ``output`` the results file is written as it goes, as
+        ``solve_path()`` writes it: each state's row, and with ``fields`` its fields, before it is
+        yielded; the file gets its name when the loop ends (``complete`` 1 at the path's end, 0
+        after a ``break`` or an exception). The options ``checkpoint`` and ``restart`` are
+        ``solve_path()``'s. As in ``solve_path()``, a pull-off ends the path unless the option
         ``stop_at_pulloff`` is false (then only its leg ends).
 
         Examples
@@ -400,21 +402,37 @@ class Solver:
         >>> for state in s.iterate_path():
         ...     p = s.pressure_array()          # this state's pressure, (Ny, Nx)
         """
-        for name in ("output", "checkpoint", "restart"):
+        for name in ("checkpoint", "restart"):
             if name in self._options:
-                raise ValueError(f"iterate_path: option {name!r} is solve_path()'s (iterate_path writes no file as it goes; "
-                                 "call write(FILE) after the loop)")
+                raise ValueError(f"iterate_path: option {name!r} is solve_path()'s (a loop of the caller's cannot be "
+                                 "restarted from inside)")
+        output = self._options.get("output")
         path, steps, stop_at_pulloff = _adhbem.solver_path(self._s)
-        yield self.start(path[0])
-        for a, b in zip(path[:-1], path[1:]):
-            for k in range(1, steps + 1):
-                # the targets of solve_path, to the last bit
-                state = self.step(a + (b - a) * k / steps)
-                yield state
-                if state["pulled_off"]:
-                    break  # the rest of this leg has nothing in contact
-            if state["pulled_off"] and stop_at_pulloff:
-                return  # and the path ends there unless stop_at_pulloff=False
+        state = self.start(path[0])
+        complete = False
+        if output is not None:
+            _adhbem.solver_output_begin(self._s, os.fspath(output))
+        try:
+            yield self._recorded(state, output)
+            for a, b in zip(path[:-1], path[1:]):
+                for k in range(1, steps + 1):
+                    # the targets of solve_path, to the last bit
+                    state = self.step(a + (b - a) * k / steps)
+                    yield self._recorded(state, output)
+                    if state["pulled_off"]:
+                        break  # the rest of this leg has nothing in contact
+                if state["pulled_off"] and stop_at_pulloff:
+                    break  # and the path ends there unless stop_at_pulloff=False
+            complete = True
+        finally:  # the loop's end, a break (GeneratorExit) or an exception: the file under its name
+            if output is not None:
+                _adhbem.solver_output_end(self._s, complete)
+
+    def _recorded(self, state: dict, output) -> dict:
+        """state, written into the results file of iterate_path() first when there is one."""
+        if output is not None:
+            _adhbem.solver_output_record(self._s)
+        return state
 
     def monitor(self, fn: Callable[[int, dict], None]) -> None:
         """Adds a function called on every rank after each recorded state.

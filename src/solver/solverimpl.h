@@ -319,6 +319,8 @@ struct _p_AdhSolver {
      FILE.csv.part, appended by rank 0), and the pull-off state its attributes describe */
   PetscInt   rows_written, pull_off_written, apart_written, full_written; /* the states the pull-off attributes describe */
   PetscBool  output_failed; /* a write into the results file failed: it is closed as it is, not written further */
+  PetscViewer writer;                             /* the results file of AdhSolverOutputBegin() (writer.c; NULL: none) */
+  char        writer_file[PETSC_MAX_PATH_LEN];    /* its name */
   /* the writes under way (AdhOutputWriteBegin_Private), for the error if they fail */
   char      writing[PETSC_MAX_PATH_LEN + 64];     /* "-adh_output: cannot write F.part" */
   char      writing_part[PETSC_MAX_PATH_LEN + 8]; /* F.part */

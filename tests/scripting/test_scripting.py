@@ -96,9 +96,34 @@ def test_iterate_path_gives_every_state_of_solve_path(tmp):
     assert same_curve({key: v[:4] for key, v in c_ref.items()}, s.curve())
 
 
-def test_iterate_path_writes_no_file_as_it_goes(tmp_path):
-    s = adhbem.Solver(path=PATH, output=str(tmp_path / "x.h5"), **OPTS)
-    with pytest.raises(ValueError, match="option 'output' is solve_path"):
+@pytest.mark.mpi
+def test_iterate_path_writes_the_file_of_solve_path_as_it_goes(tmp):
+    """With output, iterate_path() writes every state's row and fields (it kept only the last
+    state's fields, through write()): the file solve_path() writes, state for state; a break gives
+    the states taken, marked incomplete; checkpoints stay solve_path()'s."""
+    ref = adhbem.Solver(path=PATH, fields="pressure,contact", output=os.path.join(tmp, "ref.h5"), **OPTS)
+    ref.solve_path(progress=False)
+    s = adhbem.Solver(path=PATH, fields="pressure,contact", output=os.path.join(tmp, "it.h5"), **OPTS)
+    seen = []
+    for state in s.iterate_path():
+        # written before it is yielded: the part already holds this state
+        seen.append(adhbem.gather(s.pressure, s.compliance))
+    assert not os.path.exists(os.path.join(tmp, "it.h5.part"))
+    with adhbem.load(os.path.join(tmp, "ref.h5")) as a, adhbem.load(os.path.join(tmp, "it.h5")) as b:
+        assert b.params["complete"] == 1 and same_curve(a.curve, b.curve)
+        assert len(seen) == len(b.curve["d"]) > 4
+        for row, p in enumerate(seen):
+            assert np.array_equal(b.field("pressure", row), a.field("pressure", row))
+            assert np.array_equal(b.field("pressure", row), p), row
+            assert np.array_equal(b.field("contact", row), a.field("contact", row))
+    s = adhbem.Solver(path=PATH, output=os.path.join(tmp, "cut.h5"), **OPTS)
+    for k, state in enumerate(s.iterate_path()):
+        if k == 3:
+            break
+    with adhbem.load(os.path.join(tmp, "cut.h5")) as r:
+        assert r.params["complete"] == 0 and len(r.curve["d"]) == 4
+    s = adhbem.Solver(path=PATH, checkpoint=os.path.join(tmp, "ck.h5"), **OPTS)
+    with pytest.raises(ValueError, match="option 'checkpoint' is solve_path"):
         next(s.iterate_path())
 
 

@@ -10,7 +10,7 @@
      d_rep = 4 h'_rms / h''_rms): the surfaces are sticky (a finite force pulls them apart) when
      h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3) < 1, Delta r the range of
      the attraction; derived for short but finite ranges, from the DMT side.
-   - The generalised Tabor parameter (Müser, Beilstein J. Nanotechnol. 5, 419, 2014):
+   - The generalised Tabor parameter (after Müser, Beilstein J. Nanotechnol. 5, 419, 2014):
      mu_T = (R dgamma^2 / (E*^2 Delta r^3))^(1/3) with R = 1/h''_rms; above about 1 the smallest
      asperities' contacts are JKR-like, below DMT-like.
 

@@ -503,7 +503,9 @@ class Solver:
     def stickiness(self) -> Optional[dict]:
         """Whether a rough surface is sticky, estimated at set-up from its heights (the line
         ``solve_path()`` prints first), as a dict; ``None`` without an estimate (it is made for a
-        rough surface, a topography file or an array on a periodic cell, with adhesion):
+        rough surface, a topography file or an array, with adhesion, on either boundary; on the free
+        boundary the slope and curvature are central differences over the map's interior points and
+        U_el is that of the map less its mean plane taken as one periodic cell):
 
         - ``rms_slope``, ``rms_curvature``: h'_rms (the rms of the gradient's length) and h''_rms
           (the rms of the mean curvature, half the Laplacian), as SurfaceTopography defines them;

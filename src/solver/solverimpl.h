@@ -433,6 +433,7 @@ PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, Pe
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverRoughness_Private(AdhSolver, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscInt       AdhSolverUnresolved_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver, const AdhState *, PetscInt, char[], size_t);

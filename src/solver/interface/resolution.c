@@ -5,11 +5,11 @@
 
    The estimate: a summit of tip radius R with work of adhesion dgamma has the JKR contact radius
    a_c = (9 pi dgamma R^2 / (8 E*))^(1/3) at pull-off, and a detachment criterion converges with
-   the grid only where a_c spans many elements. On a periodic cell R is the mean summit radius of
-   a Gaussian isotropic surface (Nayak 1971, wide band): its mean summit curvature is
-   sqrt(8 / (3 pi)) times the rms of the Laplacian of h, which the periodic stiffness gives
-   exactly on mean-free h (S S h = -(E* / 2)^2 Lap h); this for rough surfaces and topographies. A
-   sphere has one radius, on either boundary. With a dgamma field the weakest adhesion present
+   the grid only where a_c spans many elements. For rough surfaces and topographies R is the mean
+   summit radius of a Gaussian isotropic surface (Nayak 1971, wide band): its mean summit
+   curvature is sqrt(8 / (3 pi)) times the rms of the Laplacian of h (roughness.c: spectral on a
+   periodic cell, finite differences on a free-boundary map). A sphere has one radius, on either
+   boundary. With a dgamma field the weakest adhesion present
    counts (the smallest a_c). */
 #include "solver/solverimpl.h"
 
@@ -35,20 +35,10 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
   }
   if (!(dgamma > 0) || s->sigma_fixed > 0) PetscFunctionReturn(0);
   if (type == ADH_INDENTER_SPHERE) R = s->indenter.radius;
-  else if (s->boundary == ADH_BOUNDARY_PERIODIC && s->S && (type == ADH_INDENTER_ROUGH || type == ADH_INDENTER_FILE || type == ADH_INDENTER_ARRAY)) {
-    Vec       a, b;
-    PetscReal norm, lap;
-    PetscCall(VecDuplicate(s->h, &a));
-    PetscCall(VecDuplicate(s->h, &b));
-    PetscCall(VecCopy(s->h, b));
-    PetscCall(VecShift(b, -s->mean_h)); /* S keeps the mean mode (positive definite) */
-    PetscCall(MatMult(s->S, b, a));
-    PetscCall(MatMult(s->S, a, b));
-    PetscCall(VecNorm(b, NORM_2, &norm));
-    lap = norm * 4.0 / (s->Estar * s->Estar) / PetscSqrtReal((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
-    if (lap > 0 && PetscIsNormalReal(lap)) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * lap);
-    PetscCall(VecDestroy(&a));
-    PetscCall(VecDestroy(&b));
+  else {
+    PetscReal slope, curvature, energy;
+    PetscCall(AdhSolverRoughness_Private(s, &slope, &curvature, &energy));
+    if (curvature > 0) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * 2.0 * curvature); /* the Laplacian is twice the mean curvature */
   }
   if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * s->Estar), 1.0 / 3.0) / h;
   if (R > 0 && s->crops.tabor) s->asperity_tabor = s->crops.tabor(s, R, dgamma);

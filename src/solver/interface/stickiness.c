@@ -5,7 +5,8 @@
      that flattens the surface and gains the work of adhesion dgamma A0. The ratio
      U_el / (dgamma A0) below 1: full contact is the state of least energy at zero load, the surface
      sticks everywhere once in contact, and a compressive mean pressure is reached only in full
-     contact. On a periodic cell U_el / A0 = (1/2) <h S h> exactly, S the stiffness (E*|q|/2).
+     contact. On a periodic cell U_el / A0 = (1/2) <h S h> exactly, S the stiffness (E*|q|/2); a
+     free-boundary map is taken as one cell, its mean plane removed.
    - Pastewka & Robbins (PNAS 111, 3298, 2014, eq. 10, with kappa_rep = 2 and
      d_rep = 4 h'_rms / h''_rms): the surfaces are sticky (a finite force pulls them apart) when
      h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3) < 1, Delta r the range of
@@ -16,7 +17,7 @@
 
    h'_rms is the rms of |grad h| and h''_rms the rms of the mean curvature, half the Laplacian (the
    conventions of SurfaceTopography, with which the Adhesion package evaluates the same criteria);
-   both from the stiffness: |S h| = (E* / 2) |grad h| and S S h = -(E* / 2)^2 Lap h in the mean. A
+   roughness.c computes them and U_el, on a periodic cell and on a free-boundary map. A
    zero-range criterion (crack closure, Pohrt-Popov) has no Delta r: only the first is given. */
 #include "solver/solverimpl.h"
 
@@ -26,36 +27,18 @@ PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver s)
   const AdhIndenterType type = s->indenter.type;
   const PetscReal       N    = (PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny;
   PetscReal             dgamma = s->gamma;
-  Vec                   b, a, c;
-  PetscScalar           dot;
-  PetscReal             norm_a, norm_c;
 
   PetscFunctionBegin;
   PetscCall(PetscMemzero(st, sizeof(*st)));
-  if (s->boundary != ADH_BOUNDARY_PERIODIC || !s->S || !(type == ADH_INDENTER_ROUGH || type == ADH_INDENTER_FILE || type == ADH_INDENTER_ARRAY) || s->sigma_fixed > 0) PetscFunctionReturn(0);
+  if (!(type == ADH_INDENTER_ROUGH || type == ADH_INDENTER_FILE || type == ADH_INDENTER_ARRAY) || s->sigma_fixed > 0) PetscFunctionReturn(0);
   if (s->gamma_field) { /* the energy balance is over the cell: the mean work of adhesion */
     PetscScalar sum;
     PetscCall(VecSum(s->gamma_field, &sum));
     dgamma = PetscRealPart(sum) / N;
   }
   if (!(dgamma > 0)) PetscFunctionReturn(0);
-  PetscCall(VecDuplicate(s->h, &b));
-  PetscCall(VecDuplicate(s->h, &a));
-  PetscCall(VecDuplicate(s->h, &c));
-  PetscCall(VecCopy(s->h, b));
-  PetscCall(VecShift(b, -s->mean_h)); /* the mean mode carries no energy */
-  PetscCall(MatMult(s->S, b, a));     /* the pressure of full contact */
-  PetscCall(MatMult(s->S, a, c));
-  PetscCall(VecDot(a, b, &dot));
-  PetscCall(VecNorm(a, NORM_2, &norm_a));
-  PetscCall(VecNorm(c, NORM_2, &norm_c));
-  PetscCall(VecDestroy(&b));
-  PetscCall(VecDestroy(&a));
-  PetscCall(VecDestroy(&c));
-  st->full_contact_energy = 0.5 * PetscRealPart(dot) / N;
-  st->rms_slope           = 2.0 / s->Estar * norm_a / PetscSqrtReal(N);
-  st->rms_curvature       = 0.5 * 4.0 / (s->Estar * s->Estar) * norm_c / PetscSqrtReal(N);
-  st->work_of_adhesion    = dgamma;
+  PetscCall(AdhSolverRoughness_Private(s, &st->rms_slope, &st->rms_curvature, &st->full_contact_energy));
+  st->work_of_adhesion = dgamma;
   if (!(st->full_contact_energy > 0) || !(st->rms_curvature > 0)) { /* a flat cell */
     PetscCall(PetscMemzero(st, sizeof(*st)));
     PetscFunctionReturn(0);
@@ -88,11 +71,12 @@ PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver s)
   Level: intermediate
 
   Notes:
-  Made for a rough surface, a topography file or an array on a periodic cell with adhesion (st->estimated); with a
-  dgamma field its mean counts. The criteria:
+  Made for a rough surface, a topography file or an array with adhesion (st->estimated), on either boundary; with a
+  dgamma field its mean counts. On the free boundary the slope and curvature are central differences over the map's
+  interior points, and U_el is that of the map with its mean plane removed taken as one periodic cell. The criteria:
 
   Persson and Tosatti (2001): st->persson_tosatti = U_el / (dgamma A0), U_el the elastic energy that flattens the
-  surface (full contact), exact on the periodic cell. Below 1 full contact is the state of least energy at zero load:
+  surface (full contact), exact on a periodic cell. Below 1 full contact is the state of least energy at zero load:
   once in contact the surface sticks everywhere, and a compressive mean pressure is reached only in full contact.
 
   Pastewka and Robbins (2014, eq. 10, kappa_rep = 2, d_rep = 4 h'_rms/h''_rms): st->pastewka_robbins =

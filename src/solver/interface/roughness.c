@@ -1,0 +1,125 @@
+/* A rough surface's rms slope h'_rms (of |grad h|), rms mean curvature h''_rms (half the
+   Laplacian, SurfaceTopography's convention) and the elastic energy per area that flattens it, for
+   the resolution and stickiness estimates made at set-up.
+
+   On a periodic cell all three come from the stiffness S = E* |q| / 2 on the mean-free heights, exact
+   in the spectral sense: |S h| = (E* / 2) |grad h| and S S h = -(E* / 2)^2 Lap h in the mean, and the
+   energy is <h S h>/2. A measured map on the free boundary is not periodic, and its edges would
+   count as steps: there the slope and curvature are central differences over the interior points
+   (a rank fetches the rows above and below its own), and the energy is the stiffness's on the map
+   with its mean plane removed, the map taken as one cell of a periodic surface (its edge steps add
+   a little energy, of relative order h_rms / (h'_rms L)). */
+#include "solver/solverimpl.h"
+
+/* Central differences over the interior points (both neighbours on the grid in x and in y). */
+static PetscErrorCode FiniteDifferences(AdhSolver s, PetscReal *slope, PetscReal *curvature)
+{
+  AdhGrid            g  = s->grid;
+  const PetscInt     Nx = g->Nx, Ny = g->Ny, ys = g->ys, ym = g->ym;
+  const PetscReal    hx = g->hx, hy = g->hy;
+  PetscInt           rows[2], nrows = 0, above = -1, below = -1;
+  PetscSF            sf;
+  MPI_Datatype       row;
+  const PetscScalar *ha;
+  PetscScalar       *ghost;
+  PetscReal          sums[3] = {0.0, 0.0, 0.0}; /* |grad h|^2, (Lap h / 2)^2, points */
+
+  PetscFunctionBegin;
+  if (ym > 0 && ys > 0) {
+    below         = nrows;
+    rows[nrows++] = ys - 1;
+  }
+  if (ym > 0 && ys + ym < Ny) {
+    above         = nrows;
+    rows[nrows++] = ys + ym;
+  }
+  PetscCall(AdhGridCreateRowSF(g, nrows, rows, &sf));
+  PetscCall(AdhGridGetRowType(g, MPIU_SCALAR, &row));
+  PetscCall(PetscMalloc1(nrows * Nx + 1, &ghost));
+  PetscCall(VecGetArrayRead(s->h, &ha));
+  PetscCall(PetscSFBcastBegin(sf, row, ha, ghost, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf, row, ha, ghost, MPI_REPLACE));
+  for (PetscInt j = PetscMax(ys, 1); j < PetscMin(ys + ym, Ny - 1); j++) {
+    const PetscScalar *mid = ha + (j - ys) * Nx;
+    const PetscScalar *dn  = j - 1 >= ys ? mid - Nx : ghost + below * Nx;
+    const PetscScalar *up  = j + 1 < ys + ym ? mid + Nx : ghost + above * Nx;
+    for (PetscInt i = 1; i < Nx - 1; i++) {
+      const PetscReal gx = PetscRealPart(mid[i + 1] - mid[i - 1]) / (2.0 * hx), gy = PetscRealPart(up[i] - dn[i]) / (2.0 * hy);
+      const PetscReal lap = PetscRealPart(mid[i + 1] - 2.0 * mid[i] + mid[i - 1]) / (hx * hx) + PetscRealPart(up[i] - 2.0 * mid[i] + dn[i]) / (hy * hy);
+      sums[0] += gx * gx + gy * gy;
+      sums[1] += 0.25 * lap * lap;
+      sums[2] += 1.0;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(s->h, &ha));
+  PetscCall(PetscFree(ghost));
+  PetscCall(PetscSFDestroy(&sf));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 3, MPIU_REAL, MPIU_SUM, s->comm));
+  *slope     = sums[2] > 0 ? PetscSqrtReal(sums[0] / sums[2]) : 0.0;
+  *curvature = sums[2] > 0 ? PetscSqrtReal(sums[1] / sums[2]) : 0.0;
+  PetscFunctionReturn(0);
+}
+
+/* b = h less its mean plane (on a regular grid the centred coordinates are orthogonal to the
+   constant and to each other, so each coefficient is one projection). */
+static PetscErrorCode RemoveMeanPlane(AdhSolver s, Vec b)
+{
+  AdhGrid         g  = s->grid;
+  const PetscReal cx = 0.5 * (PetscReal)(g->Nx - 1), cy = 0.5 * (PetscReal)(g->Ny - 1);
+  PetscReal       m[2] = {0.0, 0.0}, xx = 0.0, yy = 0.0;
+  PetscScalar    *ba;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(s->h, b));
+  PetscCall(VecShift(b, -s->mean_h));
+  PetscCall(VecGetArray(b, &ba));
+  for (PetscInt j = g->ys; j < g->ys + g->ym; j++)
+    for (PetscInt i = 0; i < g->Nx; i++) {
+      m[0] += ((PetscReal)i - cx) * PetscRealPart(ba[(j - g->ys) * g->Nx + i]);
+      m[1] += ((PetscReal)j - cy) * PetscRealPart(ba[(j - g->ys) * g->Nx + i]);
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 2, MPIU_REAL, MPIU_SUM, s->comm));
+  for (PetscInt i = 0; i < g->Nx; i++) xx += ((PetscReal)i - cx) * ((PetscReal)i - cx) * (PetscReal)g->Ny;
+  for (PetscInt j = 0; j < g->Ny; j++) yy += ((PetscReal)j - cy) * ((PetscReal)j - cy) * (PetscReal)g->Nx;
+  for (PetscInt j = g->ys; j < g->ys + g->ym; j++)
+    for (PetscInt i = 0; i < g->Nx; i++) ba[(j - g->ys) * g->Nx + i] -= (xx > 0 ? m[0] / xx * ((PetscReal)i - cx) : 0.0) + (yy > 0 ? m[1] / yy * ((PetscReal)j - cy) : 0.0);
+  PetscCall(VecRestoreArray(b, &ba));
+  PetscFunctionReturn(0);
+}
+
+/* The three for a rough surface, a topography file or an array (0 for any other profile, and for
+   a free-boundary map of fewer than 3 x 3 points). */
+PetscErrorCode AdhSolverRoughness_Private(AdhSolver s, PetscReal *slope, PetscReal *curvature, PetscReal *energy)
+{
+  const AdhIndenterType type = s->indenter.type;
+  const PetscReal       N    = (PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny;
+  Vec                   b, a, c;
+  PetscScalar           dot;
+  PetscReal             norm_a, norm_c;
+
+  PetscFunctionBegin;
+  *slope = *curvature = *energy = 0.0;
+  if (!s->S || !(type == ADH_INDENTER_ROUGH || type == ADH_INDENTER_FILE || type == ADH_INDENTER_ARRAY)) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(s->h, &b));
+  PetscCall(VecDuplicate(s->h, &a));
+  PetscCall(VecDuplicate(s->h, &c));
+  if (s->boundary == ADH_BOUNDARY_PERIODIC) {
+    PetscCall(VecCopy(s->h, b));
+    PetscCall(VecShift(b, -s->mean_h)); /* S keeps the mean mode (positive definite); it carries no energy */
+  } else PetscCall(RemoveMeanPlane(s, b));
+  PetscCall(MatMult(s->S, b, a)); /* the pressure of full contact */
+  PetscCall(VecDot(a, b, &dot));
+  *energy = 0.5 * PetscRealPart(dot) / N;
+  if (s->boundary == ADH_BOUNDARY_PERIODIC) {
+    PetscCall(MatMult(s->S, a, c));
+    PetscCall(VecNorm(a, NORM_2, &norm_a));
+    PetscCall(VecNorm(c, NORM_2, &norm_c));
+    *slope     = 2.0 / s->Estar * norm_a / PetscSqrtReal(N);
+    *curvature = 0.5 * 4.0 / (s->Estar * s->Estar) * norm_c / PetscSqrtReal(N);
+  } else if (s->grid->Nx >= 3 && s->grid->Ny >= 3) PetscCall(FiniteDifferences(s, slope, curvature));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&a));
+  PetscCall(VecDestroy(&c));
+  if (!PetscIsNormalReal(*curvature)) *slope = *curvature = *energy = 0.0; /* a flat map */
+  PetscFunctionReturn(0);
+}

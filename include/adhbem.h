@@ -101,8 +101,9 @@ typedef struct {
 } AdhSurface;
 
 /* Fills *s from the defaults and the options -adh_hurst, -adh_rolloff_wavelength,
-   -adh_cutoff_wavelength, -adh_rms_height | -adh_rms_slope, -adh_seed (read with prefix). */
-PETSC_EXTERN PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm, const char prefix[], AdhSurface *);
+   -adh_cutoff_wavelength, -adh_rms_height | -adh_rms_slope, -adh_seed (read with prefix); the
+   grid, its sizes set, gives the defaults -help shows. */
+PETSC_EXTERN PetscErrorCode AdhSurfaceSetFromOptions(AdhGrid, const char prefix[], AdhSurface *);
 /* Heights z (mean zero) into z, a Vec of size Nx*Ny in the grid's ordering j*Nx + i. Resolves
    the defaults, checks the ranges, scales to the requested rms exactly and records the realised
    statistics in *s. Bit-identical for any number of ranks. Cost O(N log N): one inverse FFT. */

@@ -206,7 +206,7 @@ static PyObject *py_rough_surface(PyObject *self, PyObject *args)
   PyPetscCall(AdhGridCreate(PyPetscComm_Get(pycomm), &grid));
   CatchErrorsBegin();
   ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
-  if (!ierr) ierr = AdhSurfaceSetFromOptions(PyPetscComm_Get(pycomm), prefix, &s);
+  if (!ierr) ierr = AdhSurfaceSetFromOptions(grid, prefix, &s);
   if (!ierr) ierr = AdhGridSetUp(grid);
   if (!ierr) ierr = AdhGridCreateVector(grid, &z);
   if (!ierr) ierr = AdhSurfaceGenerate(grid, &s, z);

@@ -62,8 +62,9 @@ PetscErrorCode AdhIndenterFill(AdhGrid grid, AdhIndenter *ind, Vec h)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], AdhIndenter *ind)
+PetscErrorCode AdhIndenterSetFromOptions(AdhGrid grid, const char prefix[], AdhIndenter *ind)
 {
+  MPI_Comm  comm = grid->comm;
   PetscBool typeset = PETSC_FALSE, topo = PETSC_FALSE;
 
   PetscFunctionBegin;
@@ -79,7 +80,7 @@ PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm comm, const char prefix[], Adh
   /* A topography file given without an indenter type is the indenter. */
   if (topo && !typeset && ind->topography[0]) ind->type = ADH_INDENTER_FILE;
   /* read always, so that -help lists them; they shape only a rough indenter */
-  PetscCall(AdhSurfaceSetFromOptions(comm, prefix, &ind->surface));
+  PetscCall(AdhSurfaceSetFromOptions(grid, prefix, &ind->surface));
   PetscCheck(ind->type != ADH_INDENTER_SPHERE || (ind->radius > 0 && PetscIsNormalReal(ind->radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_radius must be positive and finite, got %g", (double)ind->radius);
   PetscCheck(ind->type != ADH_INDENTER_PUNCH || (ind->punch_radius > 0 && PetscIsNormalReal(ind->punch_radius)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_punch_radius must be positive and finite, got %g", (double)ind->punch_radius);
   PetscCheck(ind->type != ADH_INDENTER_CONE || (ind->cone_slope > 0 && PetscIsNormalReal(ind->cone_slope)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cone_slope must be positive and finite, got %g", (double)ind->cone_slope);

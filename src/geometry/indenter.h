@@ -18,7 +18,7 @@ typedef struct {
   Vec             z;            /* array: the user's topography (a reference) */
 } AdhIndenter;
 
-PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(MPI_Comm, const char[], AdhIndenter *);
+PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(AdhGrid, const char[], AdhIndenter *);
 /* The profile h on the grid; a rough indenter's surface is generated here (its statistics are
    recorded in the indenter). */
 PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, AdhIndenter *, Vec h);

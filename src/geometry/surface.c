@@ -50,13 +50,23 @@ static void ModeGaussian(PetscInt seed, PetscInt kx, PetscInt ky, double *re, do
   *im = r * sin(2.0 * PETSC_PI * u2);
 }
 
+/* The defaults that depend on the grid: the cell size and 4 spacings (at most the cell); 0 while
+   the grid's sizes are not valid yet (the -help line then says so). */
+static void GridDefaults(AdhGrid grid, PetscReal *lr, PetscReal *lc)
+{
+  *lr = *lc = 0.0;
+  if (!(grid->Nx > 0 && grid->Ny > 0 && grid->Lx > 0 && grid->Ly > 0)) return;
+  *lr = PetscMax(grid->Lx, grid->Ly);
+  *lc = PetscMin(4.0 * PetscMax(grid->Lx / (PetscReal)grid->Nx, grid->Ly / (PetscReal)grid->Ny), *lr);
+}
+
 /*@
   AdhSurfaceSetFromOptions - Fills the parameters of a random rough surface from their defaults and the options database
 
   Collective
 
   Input Parameters:
-+ comm   - the communicator of the options
++ grid   - the grid the surface will be generated on, its sizes set (it need not be set up)
 - prefix - the options prefix, or `NULL`
 
   Output Parameter:
@@ -73,19 +83,25 @@ static void ModeGaussian(PetscInt seed, PetscInt kx, PetscInt ky, double *re, do
 - -adh_seed <seed> - the random seed: each Fourier coefficient is a hash of (seed, kx, ky) (default 1)
 
   Notes:
-  Parameters left at their defaults hold `PETSC_DEFAULT`; those that depend on the grid are resolved, and every range checked,
-  by `AdhSurfaceGenerate()`. Here only the rms height and slope are checked: not both, and a given value positive and finite
-  (so that it cannot pass as `PETSC_DEFAULT`).
+  `-help` shows the defaults that depend on the grid as this grid's values. Parameters left at their defaults hold
+  `PETSC_DEFAULT`, so that a grid changed afterwards gets its own; they are resolved, and every range checked, by
+  `AdhSurfaceGenerate()`. Here only the rms height and slope are checked: not both, and a given value positive and finite.
 
   Level: intermediate
 
 .seealso: `AdhSurfaceGenerate()`, `AdhSurfaceView()`, `AdhSurfaceWriteHeights()`
 @*/
-PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhSurface *s)
+PetscErrorCode AdhSurfaceSetFromOptions(AdhGrid grid, const char prefix[], AdhSurface *s)
 {
-  PetscBool seth, sets;
+  MPI_Comm  comm;
+  PetscBool seth, sets, setr, setc;
+  PetscReal lr, lc, height = 0.0, slope = 0.1;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(s, 3);
+  comm = grid->comm;
+  GridDefaults(grid, &lr, &lc);
   PetscCall(PetscMemzero(s, sizeof(*s)));
   s->hurst              = 0.8;
   s->rolloff_wavelength = PETSC_DEFAULT;
@@ -95,17 +111,23 @@ PetscErrorCode AdhSurfaceSetFromOptions(MPI_Comm comm, const char prefix[], AdhS
   s->seed               = 1;
   PetscOptionsBegin(comm, prefix, "adhbem rough surface (-adh_indenter rough)", "AdhSurface");
   PetscCall(AdhOptionsReal("-adh_hurst", "Hurst exponent H in (0, 1]: C(q) ~ q^(-2(1+H)) between roll-off and cut-off", "AdhSurfaceGenerate", s->hurst, &s->hurst, NULL));
-  PetscCall(AdhOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default -2: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", s->rolloff_wavelength, &s->rolloff_wavelength, NULL));
-  PetscCall(AdhOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default -2: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", s->cutoff_wavelength, &s->cutoff_wavelength, NULL));
-  PetscCall(AdhOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default -2: not set; not with -adh_rms_slope)", "AdhSurfaceGenerate", s->rms_height, &s->rms_height, &seth));
-  PetscCall(AdhOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean (grad z)^2), defined spectrally from the Fourier coefficients (sum of q^2 abs(z_q)^2, Parseval; exact for this band-limited periodic surface), realised exactly (default -2: 0.1 unless -adh_rms_height is given)", "AdhSurfaceGenerate", s->rms_slope, &s->rms_slope, &sets));
+  PetscCall(AdhOptionsReal("-adh_rolloff_wavelength", "Roll-off wavelength 2 pi/q_r, C(q) flat below q_r (default: the cell size max(Lx,Ly)); between the cut-off and the cell size", "AdhSurfaceGenerate", lr, &lr, &setr));
+  PetscCall(AdhOptionsReal("-adh_cutoff_wavelength", "Short-wavelength cut-off 2 pi/q_s, C(q) = 0 above q_s (default: 4 max(hx,hy)); at least 2 grid spacings, at most the cell size", "AdhSurfaceGenerate", lc, &lc, &setc));
+  PetscCall(AdhOptionsReal("-adh_rms_height", "Rms height sqrt(mean z^2) over the grid points, realised exactly (default 0: not set, -adh_rms_slope sets the amplitude; not with -adh_rms_slope)", "AdhSurfaceGenerate", height, &height, &seth));
+  PetscCall(AdhOptionsReal("-adh_rms_slope", "Rms slope sqrt(mean (grad z)^2), defined spectrally from the Fourier coefficients (sum of q^2 abs(z_q)^2, Parseval; exact for this band-limited periodic surface), realised exactly (not used with -adh_rms_height)", "AdhSurfaceGenerate", slope, &slope, &sets));
   PetscCall(AdhOptionsInt("-adh_seed", "Random seed: each Fourier coefficient is a hash of (seed, kx, ky)", "AdhSurfaceGenerate", s->seed, &s->seed, NULL));
   PetscOptionsEnd();
+  if (setr) s->rolloff_wavelength = lr;
+  if (setc) s->cutoff_wavelength = lc;
+  if (seth) s->rms_height = height;
+  if (sets) s->rms_slope = slope;
   PetscCheck(!(seth && sets), comm, PETSC_ERR_ARG_INCOMP, "-adh_rms_height and -adh_rms_slope: give one of them, not both");
   PetscCheck(s->seed >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_seed must be >= 0, got %" PetscInt_FMT, s->seed);
   /* Checked here as well as in AdhSurfaceGenerate: a given value must not pass as PETSC_DEFAULT. */
   PetscCheck(!seth || (s->rms_height > 0 && PetscIsNormalReal(s->rms_height)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_height must be positive and finite, got %g", (double)s->rms_height);
   PetscCheck(!sets || (s->rms_slope > 0 && PetscIsNormalReal(s->rms_slope)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rms_slope must be positive and finite, got %g", (double)s->rms_slope);
+  PetscCheck(!setr || (s->rolloff_wavelength > 0 && PetscIsNormalReal(s->rolloff_wavelength)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_rolloff_wavelength must be positive and finite, got %g", (double)s->rolloff_wavelength);
+  PetscCheck(!setc || (s->cutoff_wavelength > 0 && PetscIsNormalReal(s->cutoff_wavelength)), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_cutoff_wavelength must be positive and finite, got %g", (double)s->cutoff_wavelength);
   PetscFunctionReturn(0);
 }
 

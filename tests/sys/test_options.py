@@ -202,3 +202,20 @@ def test_help_lists_adhbems_options_first():
     assert "PETSc's options for every program (-log_view, -info, -options_file, -malloc_debug, the debugger, ...): adhbem -help petsc" in out
     full = subprocess.run([EXE, "-help", "petsc"], capture_output=True, text=True, timeout=60).stdout
     assert full.index("Options for all PETSc programs") < full.index("adhbem grid:")
+
+
+def test_help_shows_the_surfaces_defaults_of_this_grid():
+    """The rough surface's defaults that depend on the grid are shown as this grid's values (the
+    cell size and 4 spacings), not as a -2 that means "default"; a -2 given is refused, not taken
+    for the default."""
+    serial_only()
+    out = subprocess.run([EXE, "-adh_n", "64,32", "-adh_size", "32,8", "-help"], capture_output=True, text=True,
+                         timeout=60).stdout
+    assert re.search(r"^  -adh_rolloff_wavelength:? <32\. : 32\.>", out, re.M), out
+    assert re.search(r"^  -adh_cutoff_wavelength:? <2\. : 2\.>", out, re.M), out
+    assert re.search(r"^  -adh_rms_slope:? <0\.1 : 0\.1>", out, re.M), out
+    assert not re.search(r"^  -adh_\w+:? <-2\.", out, re.M), out
+    for option in ("-adh_rolloff_wavelength", "-adh_cutoff_wavelength"):
+        r = subprocess.run([EXE, "-adh_indenter", "rough", "-adh_boundary", "periodic", option, "-2"], capture_output=True,
+                           text=True, timeout=60)
+        assert r.returncode != 0 and f"{option} must be positive and finite, got -2" in r.stdout + r.stderr, r.stdout

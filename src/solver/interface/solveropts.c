@@ -111,7 +111,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhGridSetFromOptions(s->grid));
   PetscCall(AdhGetReducedModulusFromOptions(s->comm, s->prefix, &s->Estar));
-  PetscCall(AdhIndenterSetFromOptions(s->comm, s->prefix, &s->indenter));
+  PetscCall(AdhIndenterSetFromOptions(s->grid, s->prefix, &s->indenter));
   for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
   PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesion", "AdhSolver");
   PetscCall(AdhOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));

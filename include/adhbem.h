@@ -173,6 +173,8 @@ typedef struct {
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch carrying a net tension (0: none) */
   PetscReal small_patch_tension;     /* share of the set's tension (the sum of its p < 0) carried by patches of fewer than ADH_RESOLVED_PATCH points */
   PetscReal cohesive_area, cohesive_force; /* the area off the contact set that carries a traction (a finite-range criterion's cohesive zone) and its force (0 in the JKR limit) */
+  PetscReal contact_perimeter;       /* the length of the contact set's edge: its element edges facing a point off the set, times pi/4 (the mean ratio of a curve's length to its staircase's) */
+  PetscReal cohesive_perimeter;      /* the same of the contact with its cohesive zone: the zone's outer edge (the contact's without a zone) */
 } AdhState;
 /* A contact patch smaller than this many points (a disk under 10 elements in radius) lets go as
    the mesh says rather than as the continuum does: its tension is not resolved by the grid. */
@@ -313,7 +315,7 @@ typedef struct {
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch with a net tension there */
   PetscBool resolved;                /* the grid resolves the adhesion (meaningful when state >= 0) */
   PetscReal cohesive_elements;       /* a finite-range criterion: the elements its cohesive zone covers there (0: none) */
-  PetscReal cohesive_width;          /* and, for a sphere, how many grid spacings wide it is: the annulus around the contact's disk (0: none) */
+  PetscReal cohesive_width;          /* and how many grid spacings wide it is: a sphere's annulus around the contact's disk, else the zone's area over the contact's perimeter (0: none) */
   PetscInt  apart;                   /* the first state where the surfaces came apart (pulled_off): only then is the largest tension the pull-off force (-1: they did not) */
   PetscInt  full_contact;            /* the first state in full contact, every point of the grid in the contact set (-1: none) */
   PetscInt  last_points;             /* the points in contact at the last state (the path ended with them when not apart) */

@@ -480,12 +480,14 @@ class Solver:
         - ``small_patch_tension``, ``smallest_tensile_patch``: there, the share of the tension
           carried by contact patches under 314 elements, and the smallest patch with a net tension;
         - ``cohesive_elements``, ``cohesive_width``: with a finite-range criterion, the elements its
-          cohesive zone covers there, and for a sphere how many grid spacings wide the zone is
-          (under 10 the pull-off force depends on the grid; 0.0: no zone);
+          cohesive zone covers there, and how many grid spacings wide the zone is (a sphere's
+          annulus; on other profiles the zone's area over the mean of its inner and outer edges,
+          ``contact_perimeter`` and ``cohesive_perimeter``; under 10 the
+          pull-off force depends on the grid; 0.0: no zone);
         - ``resolved``: the verdict (``None`` before a state carried tension);
         - ``unresolved``: why not, the rule's parts that failed there: ``"patches"`` (more than 10% of
           the tension on patches under 314 elements), ``"asperities"`` (``asperity_contact_radius``
-          under 10), ``"zone"`` (a sphere's cohesive zone under 10 spacings wide); empty when resolved;
+          under 10), ``"zone"`` (the cohesive zone under 10 spacings wide); empty when resolved;
         - ``apart``: the first curve row where the surfaces came apart (-1: they did not, and the
           largest tension is no pull-off force); ``full_contact``: the first row in full contact,
           every grid point in the set (-1: none); ``last_points``: the points in contact at the
@@ -555,6 +557,10 @@ class Solver:
         - ``cohesive_area``, ``cohesive_force``: the area off the contact that carries a traction
           (``criterion="dugdale"``'s cohesive zone) and its force, included in ``force`` (0 in the
           JKR limit);
+        - ``contact_perimeter``: the length of the contact's edge (its element edges facing a point
+          off the contact, times pi/4, the mean ratio of a curve's length to its staircase's; exact
+          on average for isotropic edges, 4/pi too short along a grid line); ``cohesive_perimeter``:
+          the same of the contact with its cohesive zone, the zone's outer edge;
         - ``area_fraction``: the area over the grid's area Lx Ly (on a free boundary the
           fraction of the grid, for a measured map of the scan, in contact); on a periodic cell
           also ``mean_pressure``, the force over the cell's area.

@@ -74,7 +74,7 @@ PetscErrorCode AdhOutputWritePullOff_Private(AdhSolver s, PetscViewer v, PetscIn
       PetscCall(AdhSolverUnresolvedWords_Private(s, &s->curve.state[k], why, words, sizeof(words)));
       PetscCall(AdhH5WriteStringAttribute_Private(v, resolution[4], words)); /* "" when resolved */
     }
-    if (s->curve.state[k].cohesive_area > 0 && s->indenter.type == ADH_INDENTER_SPHERE) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[3], PETSC_REAL, &(PetscReal){AdhSolverCohesiveWidth_Private(s, &s->curve.state[k])}));
+    if (s->curve.state[k].cohesive_area > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", resolution[3], PETSC_REAL, &(PetscReal){AdhSolverCohesiveWidth_Private(s, &s->curve.state[k])}));
   } else { /* a restart's file may hold those of states after its checkpoint */
     hid_t file_id;
     PetscCall(PetscViewerHDF5GetFileId(v, &file_id));

@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include "results/resultsimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 7 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back) */
+#define ADH_CHECKPOINT_VERSION 8 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back); 8: the curve's contact_perimeter and cohesive_perimeter */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */

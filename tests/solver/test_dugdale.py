@@ -76,6 +76,31 @@ def test_resolution_reports_the_zone_width():
         assert r["resolved"] == (exact >= 10)
 
 
+
+def test_zone_width_of_any_profile_from_the_perimeter():
+    """The sphere given as an array (a profile like a measured map's): its zone's width is the
+    zone's area over the mean of its inner and outer edges (the contact's perimeter and the
+    zone's), which matches Maugis' (c - a) as the annulus does, within a grid spacing."""
+    serial_only()
+    lam, n = 1.0, 64
+    _, A, _ = maugis_pulloff(lam)
+    _, _, m = maugis_sphere(lam, [A])
+    exact = (m[0] - 1) * A * ASCALE * n
+    h = adhbem.Solver(n=n).profile_array()
+    with adhbem.Solver(n=n, boundary="free", topography=h, topography_kind="gap", gamma=GAMMA, criterion="dugdale",
+                       dugdale_stress=s0_for(lam), path=[0.04, -0.06], steps=100, progress=False) as s:
+        c = s.solve_path()
+        r = s.resolution
+    st = r["state"]
+    say(f"\ndugdale lambda 1, {n}^2, the sphere as an array: zone {r['cohesive_width']:.2f} grid spacings wide "
+        f"(area {c['cohesive_area'][st]:.4g} over edges {c['contact_perimeter'][st]:.4g}, {c['cohesive_perimeter'][st]:.4g}), "
+        f"Maugis {exact:.2f}")
+    edges = (c["contact_perimeter"][st] + c["cohesive_perimeter"][st]) / 2
+    assert r["cohesive_width"] == pytest.approx(c["cohesive_area"][st] / edges * n, rel=1e-12)
+    assert abs(r["cohesive_width"] - exact) < 1.0
+    assert r["resolved"] is False and "zone" in r["unresolved"]
+
+
 def test_pulloff_near_dmt():
     """lambda = 0.3, towards DMT (pull-off 1.816 pi dgamma R, 2 as lambda -> 0): the wide zone is
     resolved already at 64^2."""
@@ -155,12 +180,14 @@ def test_gamma_field():
 
 @pytest.mark.mpi
 def test_same_curve_on_any_number_of_ranks():
-    """COMM_WORLD against COMM_SELF under both controls: the same contact counts, forces to 1e-10."""
+    """COMM_WORLD against COMM_SELF under both controls: the same contact counts and edges (the
+    contact's and its zone's), forces to 1e-10."""
     mpi = PETSc.COMM_WORLD.tompi4py()
     for control, path in (("displacement", (0.03, -0.05)), ("force", (0.01, -0.03))):
         world = run(32, 0.5, control=control, path=path, steps=12)
         alone = run(32, 0.5, control=control, path=path, steps=12, comm=PETSc.COMM_SELF)
-        same = mpi.allreduce(int(len(world["d"]) == len(alone["d"]) and np.array_equal(world["contact_points"], alone["contact_points"])), op=_min())
+        same = mpi.allreduce(int(len(world["d"]) == len(alone["d"]) and all(np.array_equal(world[k], alone[k]) for k in (
+            "contact_points", "contact_perimeter", "cohesive_perimeter"))), op=_min())
         rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
         say(f"\ndugdale, {control}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
         assert same == 1 and rel < 1e-10

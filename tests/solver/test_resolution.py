@@ -23,6 +23,16 @@ def serial_only():
         pytest.skip("runs the executable itself")
 
 
+def perimeter(contact, periodic, h=1.0):
+    """pi/4 times the contact's element edges facing a point off it (wrapping on a periodic cell)."""
+    c = contact.astype(bool)
+    if periodic:
+        edges = np.count_nonzero(c != np.roll(c, 1, axis=0)) + np.count_nonzero(c != np.roll(c, 1, axis=1))
+    else:
+        edges = np.count_nonzero(c[1:] != c[:-1]) + np.count_nonzero(c[:, 1:] != c[:, :-1])
+    return math.pi / 4 * edges * h
+
+
 def expected(p, contact, periodic):
     """(patches, smallest patch with net tension, share of tension in patches < SMALL points)."""
     label, n = label_patches(contact.astype(bool), periodic)
@@ -46,8 +56,9 @@ def bumps(N):
 
 @pytest.mark.parametrize("boundary", ["free", "periodic"])
 def test_statistics_against_the_fields(tmp_path, boundary):
-    """Every state's patches, smallest tensile patch and small-patch share equal a flood fill of
-    the written contact and pressure fields (periodic: patches wrap across the seam)."""
+    """Every state's patches, smallest tensile patch, small-patch share and perimeter equal a flood
+    fill and an edge count of the written contact and pressure fields (periodic: patches wrap
+    across the seam)."""
     serial_only()
     N = 96
     h = bumps(N)
@@ -69,6 +80,8 @@ def test_statistics_against_the_fields(tmp_path, boundary):
             assert c["patches"][row] == n
             assert c["smallest_tensile_patch"][row] == smallest
             assert abs(c["small_patch_tension"][row] - share) < 1e-12
+            assert c["contact_perimeter"][row] == pytest.approx(perimeter(m, boundary == "periodic"), rel=1e-14)
+            assert c["cohesive_perimeter"][row] == c["contact_perimeter"][row]  # no zone
             checked += smallest > 0 and 0 < share < 1
         say(f"\n{boundary}: patches {c['patches'][()].astype(int).tolist()}, smallest tensile "
             f"{c['smallest_tensile_patch'][()].astype(int).tolist()}, small-patch share {np.round(c['small_patch_tension'][()], 3).tolist()}")
@@ -179,8 +192,22 @@ def test_statistics_on_any_number_of_ranks():
     world = adhbem.Solver(**opts).solve_path()
     alone = adhbem.Solver(comm=PETSc.COMM_SELF, **opts).solve_path()
     mpi = PETSc.COMM_WORLD.tompi4py()
-    same = all(np.array_equal(world[k], alone[k]) for k in ("patches", "smallest_tensile_patch"))
+    same = all(np.array_equal(world[k], alone[k]) for k in ("patches", "smallest_tensile_patch", "contact_perimeter",
+                                                           "cohesive_perimeter"))
     diff = float(np.max(np.abs(world["small_patch_tension"] - alone["small_patch_tension"])))
     assert mpi.allreduce(int(same), op=_min()) == 1
     assert mpi.allreduce(diff, op=_max()) < 1e-12
-    assert alone["smallest_tensile_patch"].max() > 0
+    assert alone["smallest_tensile_patch"].max() > 0 and alone["contact_perimeter"].max() > 0
+
+
+def test_perimeter_of_a_disk():
+    """The JKR sphere's contact disk: the perimeter is 2 pi a to within a spacing in the radius,
+    where a spans 20 to 40 elements (pi/4 times the staircase is right on average over the edge's
+    directions; a digital disk's staircase is 4 times the rows and columns it spans)."""
+    N = 128
+    s = adhbem.Solver(n=N, size=1.0, gamma=gamma_for(25.0 / N), path=[0.05, 0.0], steps=4)
+    c = s.solve_path()
+    for area, length in zip(c["area"][1:], c["contact_perimeter"][1:]):
+        a = math.sqrt(area / math.pi)
+        say(f"\ndisk a = {a * N:.1f} spacings: perimeter / (2 pi a) = {length / (2 * math.pi * a):.4f}")
+        assert a * N > 20 and length == pytest.approx(2 * math.pi * a, abs=2 * math.pi / N)

@@ -23,6 +23,8 @@ const AdhCurveColumn AdhCurveColumns[] = {
   COLUMN(small_patch_tension, PETSC_FALSE),
   COLUMN(cohesive_area, PETSC_FALSE),
   COLUMN(cohesive_force, PETSC_FALSE),
+  COLUMN(contact_perimeter, PETSC_FALSE),
+  COLUMN(cohesive_perimeter, PETSC_FALSE),
 };
 const PetscInt AdhCurveNumColumns = sizeof(AdhCurveColumns) / sizeof(AdhCurveColumns[0]);
 

@@ -122,12 +122,16 @@ PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver s, const AdhState *st,
   PetscFunctionReturn(0);
 }
 
-/* A sphere's cohesive zone at state st: the width of the annulus around the contact's disk, in grid
-   spacings (0: no zone, or another profile). */
+/* The cohesive zone's width at state st in grid spacings (0: no zone). A sphere's is the width of
+   the annulus around the contact's disk; on any other profile (a rough surface's many patches) the
+   zone's area over the mean of its inner and outer edges' lengths, the mean width of a band along
+   the contact's edge (exact for an annulus, pi (b^2 - a^2) = (b - a) (2 pi a + 2 pi b) / 2). */
 PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
 {
-  if (!(st->cohesive_area > 0) || s->indenter.type != ADH_INDENTER_SPHERE) return 0.0;
-  return (PetscSqrtReal((st->area + st->cohesive_area) / PETSC_PI) - PetscSqrtReal(st->area / PETSC_PI)) / PetscMin(s->grid->hx, s->grid->hy);
+  const PetscReal h = PetscMin(s->grid->hx, s->grid->hy);
+  if (!(st->cohesive_area > 0)) return 0.0;
+  if (s->indenter.type == ADH_INDENTER_SPHERE) return (PetscSqrtReal((st->area + st->cohesive_area) / PETSC_PI) - PetscSqrtReal(st->area / PETSC_PI)) / h;
+  return st->contact_perimeter + st->cohesive_perimeter > 0 ? 2.0 * st->cohesive_area / (st->contact_perimeter + st->cohesive_perimeter) / h : 0.0;
 }
 
 /*@
@@ -149,17 +153,18 @@ PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
   Notes:
   The estimate: a summit of tip radius R with work of adhesion dgamma has the JKR contact radius
   a_c = (9 pi dgamma R^2 / (8 E*))^(1/3) at pull-off, and a detachment criterion converges with the grid only where
-  a_c spans many elements. R is the sphere's radius on either boundary; for a rough surface or a topography on a
-  periodic cell it is the mean summit radius of a Gaussian isotropic surface (Nayak 1971), from the rms of the
+  a_c spans many elements. R is the sphere's radius on either boundary; for a rough surface or a topography, on either
+  boundary, it is the mean summit radius of a Gaussian isotropic surface (Nayak 1971), from the rms of the
   Laplacian of h. With a dgamma field the weakest adhesion present counts (the smallest a_c). It is 0, no estimate,
   without adhesion, with -adh_critical_stress, and for other profiles. It is made at set-up and whenever the profile
   or the dgamma field changes.
 
   The verdict r->resolved, meaningful when r->state >= 0: at most 10% of the tension at the largest tension is carried
   by patches of fewer than `ADH_RESOLVED_PATCH` points, the estimate, if there is one, is at least 10 grid spacings,
-  and a sphere's cohesive zone (`ADHCRITERIONDUGDALE`), if there is one, is at least 10 grid spacings wide (its
-  pull-off force converges at first order, about 0.4/width relative). r->cohesive_elements gives the elements the zone
-  covers at that state for any profile. Computed from the curve, so the same on every rank.
+  and a finite-range criterion's cohesive zone, if there is one, is at least 10 grid spacings wide (a sphere's pull-off
+  force converges at first order, about 0.4/width relative). r->cohesive_elements gives the elements the zone covers
+  at that state and r->cohesive_width its width: a sphere's annulus, or on any other profile the zone's area over the
+  mean of its inner and outer edges (the state's contact_perimeter and cohesive_perimeter). Computed from the curve, so the same on every rank.
 
   r->apart is the first state where the surfaces came apart (a leg ended in pull-off); only then is the largest tension
   the pull-off force. Without it (-1) the path ended in contact, r->last_points of them, or in full contact,
@@ -215,8 +220,8 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   One line gives the estimate of `AdhSolverGetResolution()` when there is one, with a warning below 10 grid spacings
   that the pull-off force depends on the grid. When a recorded state carried tension a second line follows on the state
   of the largest tension: the share of its tension in patches of fewer than `ADH_RESOLVED_PATCH` elements, its smallest
-  patch with a net tension, and the verdict; before it, with `ADHCRITERIONDUGDALE`, a line on the cohesive zone there
-  (for a sphere how many grid spacings wide it is, with a warning below 10; otherwise the elements it covers). Nothing
+  patch with a net tension, and the verdict; before it, with a finite-range criterion, a line on the cohesive zone
+  there (how many grid spacings wide it is, with a warning below 10, and the elements it covers). Nothing
   is printed when the curve has states and none touched (the path
   has warned that it never touches).
 
@@ -242,7 +247,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
-  if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is an annulus about %.3g grid spacings wide (%.0f elements)%s\n", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid, about 0.4/width relative)" : ""));
+  if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is %s about %.3g grid spacings wide (%.0f elements)%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "an annulus" : "a band along the contact's edge, on average", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid; on a sphere about 0.4/width relative)" : ""));
   else if (r.cohesive_elements > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone covers %.0f elements\n", (double)r.cohesive_elements));
   if (r.apart < 0 && s->curve.state[r.state].contact_points == s->grid->Nx * s->grid->Ny) {
     /* the whole cell sticks: no edge, nothing for the grid to resolve */

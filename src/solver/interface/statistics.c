@@ -6,7 +6,9 @@
    wrapping across the edges of a periodic cell. Each rank labels the clusters of its own rows
    with a union-find; rank 0 then joins the labels that touch across rank boundaries (and across
    the periodic seam), from the first and last row of every rank only, and sums each patch's
-   points, force and tension from its pieces. O(N) work per step.
+   points, force and tension from its pieces. O(N) work per step. The same pass counts the set's
+   edges that face a point off it, for the contact's perimeter (the rows across rank boundaries
+   from the same gathered first and last rows).
 
    Resolution: a detachment criterion converges with the grid only where the contact edge is long
    on the scale of an element. A patch of a few elements lets go at a load the mesh sets (on a
@@ -40,13 +42,15 @@ static PetscInt Union(PetscInt *parent, PetscInt a, PetscInt b)
 
 /* The patches of the set: their number, the points of the smallest one carrying a net tension, and
    the share of the tension in patches of fewer than ADH_RESOLVED_PATCH points. */
-static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
+static PetscErrorCode CountPatches(AdhSolver s, const PetscBool zone[], AdhState *st)
 {
   const PetscInt     Nx = s->grid->Nx, n = s->nlocal, ym = n / Nx;
   const PetscBool    periodic = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscInt          *parent, *label, *edges = NULL, *all = NULL, *counts = NULL, *offset = NULL;
   PetscInt          *first, *rowa, *rowb, *prev, *cur, *swap;
-  PetscInt           k, i, j, local = 0, total, merged = 0, nset = 0, result[2] = {0, 0};
+  PetscInt           k, i, j, local = 0, total, merged = 0, nset = 0, result[4] = {0, 0, 0, 0};
+  PetscInt           edge[4] = {0, 0, 0, 0}; /* edges facing a point off the set: between columns (length hy), between rows (hx); the same of the set with its cohesive zone */
+  PetscBool         *out, *prevout;           /* the current and previous rows of the set with its zone */
   PetscReal         *sums, *allsums = NULL, small[2] = {0.0, 0.0};
   PetscInt          *lastrow, *inrow;
   const PetscScalar *pa;
@@ -60,17 +64,26 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
   for (k = 0; k < n; k++) nset += s->in_set[k] ? 1 : 0;
   PetscCall(PetscMalloc2(nset + 1, &parent, nset + 1, &label));
   PetscCall(PetscMalloc3(Nx, &first, Nx, &rowa, Nx, &rowb));
+  PetscCall(PetscMalloc2(Nx, &out, Nx, &prevout));
   prev = rowa;
   cur  = rowb;
   for (k = 0; k < nset; k++) parent[k] = k;
   for (j = 0, k = 0; j < ym; j++) {
     for (i = 0; i < Nx; i++) {
       cur[i] = s->in_set[j * Nx + i] ? k++ : -1;
+      out[i] = (PetscBool)(cur[i] >= 0 || zone[j * Nx + i]);
+      if (i > 0 && (cur[i] < 0) != (cur[i - 1] < 0)) edge[0]++;
+      if (j > 0 && (cur[i] < 0) != (prev[i] < 0)) edge[1]++;
+      if (i > 0 && out[i] != out[i - 1]) edge[2]++;
+      if (j > 0 && out[i] != prevout[i]) edge[3]++;
       if (cur[i] < 0) continue;
       if (i > 0 && cur[i - 1] >= 0) Union(parent, cur[i], cur[i - 1]);
       if (j > 0 && prev[i] >= 0) Union(parent, cur[i], prev[i]);
     }
     if (periodic && Nx > 1 && cur[0] >= 0 && cur[Nx - 1] >= 0) Union(parent, cur[0], cur[Nx - 1]);
+    if (periodic && Nx > 1 && (cur[0] < 0) != (cur[Nx - 1] < 0)) edge[0]++;
+    if (periodic && Nx > 1 && out[0] != out[Nx - 1]) edge[2]++;
+    PetscCall(PetscArraycpy(prevout, out, Nx));
     if (j == 0) PetscCall(PetscArraycpy(first, cur, Nx));
     swap = prev; prev = cur; cur = swap;
   }
@@ -101,12 +114,13 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
   PetscCall(VecRestoreArrayRead(s->p, &pa));
   PetscCall(PetscFree2(lastrow, inrow));
 
-  /* This rank's cluster count, then the labels of its first and last row (-1: not in the set). */
+  /* This rank's cluster count, then the labels of its first and last row (-1: not in the set, -2:
+     in its cohesive zone). */
   PetscCall(PetscMalloc1(2 * Nx + 1, &edges));
   edges[0] = local;
   for (i = 0; i < Nx; i++) {
-    edges[1 + i]      = first[i] >= 0 ? label[Find(parent, first[i])] : -1;
-    edges[1 + Nx + i] = prev[i] >= 0 ? label[Find(parent, prev[i])] : -1;
+    edges[1 + i]      = ym == 0 ? -1 : first[i] >= 0 ? label[Find(parent, first[i])] : zone[i] ? -2 : -1;
+    edges[1 + Nx + i] = ym == 0 ? -1 : prev[i] >= 0 ? label[Find(parent, prev[i])] : zone[(ym - 1) * Nx + i] ? -2 : -1;
   }
   if (!rank) PetscCall(PetscMalloc1((2 * Nx + 1) * size, &all));
   PetscCallMPI(MPI_Gather(edges, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, all, (PetscMPIInt)(2 * Nx + 1), MPIU_INT, 0, s->comm));
@@ -137,8 +151,11 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
       const PetscMPIInt next = r + 1 < size ? r + 1 : 0;
       const PetscInt   *last = all + r * (2 * Nx + 1) + 1 + Nx, *first = all + next * (2 * Nx + 1) + 1;
       if (r + 1 == size && !periodic) break;
-      for (i = 0; i < Nx; i++)
+      for (i = 0; i < Nx; i++) {
         if (last[i] >= 0 && first[i] >= 0) merged += Union(gparent, offset[r] + last[i], offset[next] + first[i]);
+        if ((last[i] < 0) != (first[i] < 0)) result[2]++;
+        if ((last[i] == -1) != (first[i] == -1)) result[3]++;
+      }
     }
     result[0] = total - merged;
     /* each patch's sums at its root (the pieces are numbered as the gathered sums are laid out) */
@@ -160,7 +177,13 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
     PetscCall(PetscFree(allsums));
     PetscCall(PetscFree(all));
   }
-  PetscCallMPI(MPI_Bcast(result, 2, MPIU_INT, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(result, 4, MPIU_INT, 0, s->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, edge, 4, MPIU_INT, MPI_SUM, s->comm));
+  edge[1] += result[2];
+  edge[3] += result[3];
+  /* a staircase of edges is 4/pi times as long as the isotropic curve it follows, on average */
+  st->contact_perimeter  = 0.25 * PETSC_PI * ((PetscReal)edge[0] * s->grid->hy + (PetscReal)edge[1] * s->grid->hx);
+  st->cohesive_perimeter = 0.25 * PETSC_PI * ((PetscReal)edge[2] * s->grid->hy + (PetscReal)edge[3] * s->grid->hx);
   PetscCallMPI(MPI_Bcast(small, 2, MPIU_REAL, 0, s->comm));
   st->patches                = result[0];
   st->smallest_tensile_patch = result[1];
@@ -169,6 +192,7 @@ static PetscErrorCode CountPatches(AdhSolver s, AdhState *st)
   PetscCall(PetscFree(edges));
   PetscCall(PetscFree2(parent, label));
   PetscCall(PetscFree3(first, rowa, rowb));
+  PetscCall(PetscFree2(out, prevout));
   PetscFunctionReturn(0);
 }
 
@@ -179,9 +203,10 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   PetscScalar        gsum;
   PetscReal          ratio = 0.0, su, zone[2] = {0.0, 0.0};
   PetscInt           k, count[2] = {0, 0};
+  PetscBool         *in_zone;
 
   PetscFunctionBegin;
-  PetscCall(CountPatches(s, st));
+  PetscCall(PetscCalloc1(s->nlocal + 1, &in_zone));
   PetscCall(VecSum(s->g, &gsum));
   st->mean_gap = PetscRealPart(gsum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   PetscCall(VecGetArrayRead(s->p, &pa));
@@ -193,7 +218,8 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
     if (!s->in_set[k]) { /* a traction off the set: a cohesive zone's (a law's: within its zone gap) */
       if (p != 0) {
         const PetscReal dgamma = gamma ? PetscRealPart(gamma[k]) : s->gamma;
-        if (!s->crops.zone_gap || PetscRealPart(ga[k]) <= s->crops.zone_gap(s->crops.data, dgamma)) zone[0] += A;
+        in_zone[k] = (PetscBool)(!s->crops.zone_gap || PetscRealPart(ga[k]) <= s->crops.zone_gap(s->crops.data, dgamma));
+        if (in_zone[k]) zone[0] += A;
         zone[1] += p * A;
       }
       continue;
@@ -206,6 +232,8 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
   if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
   PetscCall(VecRestoreArrayRead(s->g, &ga));
   PetscCall(VecRestoreArrayRead(s->p, &pa));
+  PetscCall(CountPatches(s, in_zone, st));
+  PetscCall(PetscFree(in_zone));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, count, 2, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, zone, 2, MPIU_REAL, MPIU_SUM, s->comm));

@@ -327,11 +327,11 @@ typedef struct {
 #define ADH_UNRESOLVED_ASPERITIES 2 /* the set-up estimate of the smallest asperities' (or the sphere's) JKR radius is under 10 grid spacings */
 #define ADH_UNRESOLVED_ZONE       4 /* a sphere's cohesive zone is under 10 grid spacings wide */
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
-/* Whether a rough surface is sticky, estimated at set-up from its heights (a periodic cell): the
+/* Whether a rough surface is sticky, estimated at set-up from its heights (either boundary): the
    elastic energy of full contact against the work of adhesion (Persson & Tosatti 2001), and with a
    finite-range criterion the Pastewka-Robbins criterion (2014) and the generalised Tabor parameter. */
 typedef struct {
-  PetscBool estimated;           /* the estimate exists (a rough surface or topography on a periodic cell, with adhesion) */
+  PetscBool estimated;           /* the estimate exists (a rough surface, topography or array, with adhesion) */
   PetscReal rms_slope;           /* h'_rms, the rms of |grad h| */
   PetscReal rms_curvature;       /* h''_rms, the rms of the mean curvature (half the Laplacian of h) */
   PetscReal full_contact_energy; /* U_el / A0, the elastic energy per area that flattens the surface (full contact) */
@@ -341,7 +341,7 @@ typedef struct {
   PetscReal pastewka_robbins;    /* h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3): below 1 sticky (0: zero range) */
   PetscReal tabor;               /* the generalised Tabor parameter (R dgamma^2 / (E*^2 Delta r^3))^(1/3), R = 1/h''_rms (0: zero range) */
   PetscBool sticks_everywhere;   /* persson_tosatti < 1 */
-  PetscBool sticky;              /* sticks_everywhere, or pastewka_robbins < 1 */
+  PetscBool sticky;              /* sticks_everywhere, or pastewka_robbins < 1; known only with one of them (sticks_everywhere, or range > 0): a zero-range criterion on a surface that does not stick everywhere leaves it to the run (PETSC_FALSE) */
 } AdhStickiness;
 PETSC_EXTERN PetscErrorCode AdhSolverGetStickiness(AdhSolver, AdhStickiness *);
 /* The line on the stickiness ("adhbem: stickiness: ..."; nothing without an estimate). */

@@ -734,7 +734,7 @@ static PyObject *py_solver_progress(PyObject *self, PyObject *args)
   return PyFloat_FromDouble((double)before);
 }
 
-/* How well the grid resolves the adhesion, as the results file's attributes name it. */
+/* How well the grid resolves the adhesion (the results file's attributes hold the same under their own names). */
 static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
 {
   AdhSolver     solver;
@@ -744,7 +744,8 @@ static PyObject *py_solver_resolution(PyObject *self, PyObject *args)
   return Py_BuildValue("{s:d,s:d,s:O,s:n,s:d,s:d,s:n,s:O,s:d,s:d,s:n,s:n,s:n,s:n,s:[sss]}", "asperity_contact_radius", (double)r.asperity_contact_radius, "asperity_tabor", (double)r.asperity_tabor, "touched", r.touched ? Py_True : Py_False, "state", (Py_ssize_t)r.state, "force", (double)r.force, "small_patch_tension", (double)r.small_patch_tension, "smallest_tensile_patch", (Py_ssize_t)r.smallest_tensile_patch, "resolved", r.state < 0 ? Py_None : r.resolved ? Py_True : Py_False, "cohesive_elements", (double)r.cohesive_elements, "cohesive_width", (double)r.cohesive_width, "apart", (Py_ssize_t)r.apart, "full_contact", (Py_ssize_t)r.full_contact, "last_points", (Py_ssize_t)r.last_points, "stopped", (Py_ssize_t)r.stopped, "unresolved", r.unresolved & ADH_UNRESOLVED_PATCHES ? "patches" : NULL, r.unresolved & ADH_UNRESOLVED_ASPERITIES ? "asperities" : NULL, r.unresolved & ADH_UNRESOLVED_ZONE ? "zone" : NULL);
 }
 
-/* Whether a rough surface is sticky, as the results file's attributes name it (None: no estimate). */
+/* Whether a rough surface is sticky (None: no estimate; sticky None: the run tells, a zero-range criterion on a
+   partial contact). The results file's stickiness_* attributes hold the same. */
 static PyObject *py_solver_stickiness(PyObject *self, PyObject *args)
 {
   AdhSolver     solver;
@@ -752,7 +753,7 @@ static PyObject *py_solver_stickiness(PyObject *self, PyObject *args)
   if (!PyArg_ParseTuple(args, "O&", solver_arg, &solver)) return NULL;
   PyPetscCall(AdhSolverGetStickiness(solver, &st));
   if (!st.estimated) Py_RETURN_NONE;
-  return Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:O,s:O}", "rms_slope", (double)st.rms_slope, "rms_curvature", (double)st.rms_curvature, "full_contact_energy", (double)st.full_contact_energy, "work_of_adhesion", (double)st.work_of_adhesion, "persson_tosatti", (double)st.persson_tosatti, "range", (double)st.range, "pastewka_robbins", (double)st.pastewka_robbins, "generalized_tabor", (double)st.tabor, "sticks_everywhere", st.sticks_everywhere ? Py_True : Py_False, "sticky", st.sticky ? Py_True : Py_False);
+  return Py_BuildValue("{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:O,s:O}", "rms_slope", (double)st.rms_slope, "rms_curvature", (double)st.rms_curvature, "full_contact_energy", (double)st.full_contact_energy, "work_of_adhesion", (double)st.work_of_adhesion, "persson_tosatti", (double)st.persson_tosatti, "range", (double)st.range, "pastewka_robbins", (double)st.pastewka_robbins, "generalized_tabor", (double)st.tabor, "sticks_everywhere", st.sticks_everywhere ? Py_True : Py_False, "sticky", !(st.sticks_everywhere || st.range > 0) ? Py_None : st.sticky ? Py_True : Py_False);
 }
 
 static PyObject *py_solver_stickiness_view(PyObject *self, PyObject *args)

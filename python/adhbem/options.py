@@ -82,10 +82,16 @@ def _number(text):
         return _real(text)
 
 
-def _not_set(value):
+# -help's words for a default that is not one number: derived from other options ("(default: the
+# cell size ...)", shown as this grid's value) or none ("(default 0: not set, ...")
+_DERIVED = re.compile(r"\(default: |\(default \S+: not set")
+
+
+def _not_set(value, text=""):
     """-help shows some options' 'not set' as a sentinel (-2: the library chooses; a huge modulus:
-    a rigid body): in Python that is None."""
-    return isinstance(value, float) and (value == -2.0 or abs(value) >= 1e300)
+    a rigid body), or says in its text that the default is derived or none: in Python that is
+    None."""
+    return bool(_DERIVED.search(text)) or isinstance(value, float) and (value == -2.0 or abs(value) >= 1e300)
 
 
 def parse_help(text: str) -> list[Option]:
@@ -133,7 +139,7 @@ def parse_help(text: str) -> list[Option]:
             if whole:
                 raw = whole["values"]
                 default = [float(v) for v in raw.split(",")]
-        if _not_set(default):
+        if _not_set(default, body):
             default = None
         options.append(Option(name, group, kind, raw, default, body.strip(), choices))
     return options

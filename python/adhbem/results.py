@@ -72,6 +72,10 @@ class Results:
             self.curve = {k: self._file["curve"][k][()] for k in self._file["curve"]}
             if "path" in self.curve:  # earlier files: /curve/path, of its own length
                 self.params.setdefault("path", self.curve.pop("path"))
+            # a write that failed on some ranks part-way through a state's row leaves columns of
+            # unequal length: the states whole in every column are the file's
+            whole = min((len(v) for v in self.curve.values()), default=0)
+            self.curve = {k: v[:whole] for k, v in self.curve.items()}
         except (OSError, KeyError) as e:
             if not os.path.exists(journal):
                 if self._file is not None:

@@ -522,9 +522,13 @@ class Solver:
         - ``generalized_tabor``: (R dgamma^2 / (E*^2 Delta r^3))^(1/3) with R = 1 / h''_rms (0.0
           without a range);
         - ``sticks_everywhere``, ``sticky``: the verdicts (Persson-Tosatti below 1; that, or
-          Pastewka-Robbins below 1).
+          Pastewka-Robbins below 1); ``sticky`` is ``None`` when neither says (a zero-range
+          criterion on a surface that does not stick everywhere: the run tells).
 
-        The results file holds the same as root attributes ``stickiness_persson_tosatti``, ...
+        The results file holds the same as root attributes ``stickiness_persson_tosatti``,
+        ``stickiness_pastewka_robbins``, ``stickiness_tabor`` (this ``generalized_tabor``),
+        ``stickiness_range``, ``stickiness_work_of_adhesion``, ``stickiness_rms_slope``, ...,
+        ``sticks_everywhere`` and ``sticky`` (absent where it is ``None`` here).
         """
         return _adhbem.solver_stickiness(self._s)
 

@@ -141,12 +141,15 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_rms_curvature", PETSC_REAL, &st->rms_curvature));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_full_contact_energy", PETSC_REAL, &st->full_contact_energy));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_persson_tosatti", PETSC_REAL, &st->persson_tosatti));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_work_of_adhesion", PETSC_REAL, &st->work_of_adhesion));
     if (st->range > 0) {
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_range", PETSC_REAL, &st->range));
       PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_pastewka_robbins", PETSC_REAL, &st->pastewka_robbins));
       PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stickiness_tabor", PETSC_REAL, &st->tabor));
     }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "sticks_everywhere", PETSC_BOOL, &st->sticks_everywhere));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "sticky", PETSC_BOOL, &st->sticky));
+    /* known with either criterion; a zero-range criterion on a partial contact leaves it to the run */
+    if (st->sticks_everywhere || st->range > 0) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "sticky", PETSC_BOOL, &st->sticky));
   }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "steps", PETSC_INT, &s->steps));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cascade_rtol", PETSC_REAL, &s->cascade_rtol));

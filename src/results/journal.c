@@ -42,7 +42,7 @@ PetscErrorCode AdhJournalWrite_Private(AdhSolver s, PetscInt from, PetscInt to)
     ok = fflush(fp) == 0 && !ferror(fp) && fsync(fileno(fp)) == 0;
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
-  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "-adh_output: could not write the curve to %s", s->output);
+  PetscCheck(ok, s->comm, PETSC_ERR_FILE_WRITE, "could not write the curve to %s", s->journal_name);
   PetscFunctionReturn(0);
 }
 
@@ -56,6 +56,7 @@ PetscErrorCode AdhJournalOpen_Private(AdhSolver s, const char file[])
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   PetscCall(JournalName(file, name, sizeof(name)));
+  PetscCall(PetscStrncpy(s->journal_name, name, sizeof(s->journal_name)));
   if (!rank) {
     if (s->journal) fclose(s->journal);
     s->journal = fopen(name, "w");

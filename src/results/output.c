@@ -223,6 +223,8 @@ PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  /* the open file shares the journal and the count of rows and frames written */
+  PetscCheck(!s->writer, s->comm, PETSC_ERR_ORDER, "%s is being written state by state (AdhSolverOutputBegin(), Python's iterate_path(output=...)): end it before writing another file", s->writer_file);
   ierr = AdhOutputOpen_Private(s, file, &viewer);
   if (!ierr) ierr = AdhOutputWriteFields_Private(s, viewer, PetscMax(s->curve.n - 1, 0));
   if (!ierr) ierr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, &(PetscBool){PETSC_TRUE});

@@ -327,6 +327,7 @@ struct _p_AdhSolver {
   char      writing_kept[3 * PETSC_MAX_PATH_LEN]; /* what is left if they fail */
   PetscBool writing_discard;                      /* F.part holds nothing to keep: removed by a rank that ends the job alone */
   FILE      *journal;
+  char      journal_name[PETSC_MAX_PATH_LEN + 16]; /* its FILE.csv.part, for the error that it cannot be written */
 
   /* stopping a path on a signal (interface/path.c): the checks are on while the path runs with its
      handlers installed; stop_signal is the signal every rank agreed on */

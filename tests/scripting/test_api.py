@@ -47,7 +47,8 @@ def test_defaults_are_the_libraries():
     assert table["certify"].default is True and table["criterion_certify"].default is False
     assert sorted(table["criterion"].choices) == ["crack-closure", "dugdale", "exponential", "pohrt-popov"]  # PETSc 3.2x lists them sorted
     assert table["boundary"].default == "free" and table["boundary"].choices == ("free", "periodic")
-    assert table["rms_slope"].default is None  # chosen by the library (0.1 unless rms_height)
+    assert table["rms_slope"].default == 0.1  # unless rms_height is given
+    assert table["rms_height"].default is None and table["rolloff_wavelength"].default is None  # derived from the grid
     assert table["output"].default is None and table["output"].kind == "str"
 
 

@@ -106,8 +106,14 @@ def test_iterate_path_writes_the_file_of_solve_path_as_it_goes(tmp):
     s = adhbem.Solver(path=PATH, fields="pressure,contact", output=os.path.join(tmp, "it.h5"), **OPTS)
     seen = []
     for state in s.iterate_path():
-        # written before it is yielded: the part already holds this state
         seen.append(adhbem.gather(s.pressure, s.compliance))
+        with open(os.path.join(tmp, "it.csv.part")) as f:  # written before it is yielded
+            rows = [line for line in f if line.strip() and not line.startswith("#")][1:]
+        assert len(rows) == len(seen) and float(rows[-1].split(",")[1]) == pytest.approx(state["d"], rel=1e-12)
+        if len(seen) == 2:  # another file while this one is open: refused, this one goes on
+            with pytest.raises(RuntimeError, match="it.h5 is being written state by state"):
+                s.write(os.path.join(tmp, "other.h5"))
+            assert not os.path.exists(os.path.join(tmp, "other.h5"))
     assert not os.path.exists(os.path.join(tmp, "it.h5.part"))
     with adhbem.load(os.path.join(tmp, "ref.h5")) as a, adhbem.load(os.path.join(tmp, "it.h5")) as b:
         assert b.params["complete"] == 1 and same_curve(a.curve, b.curve)

@@ -46,9 +46,11 @@ def test_a_wave_against_the_closed_forms(criterion):
     assert st["sticks_everywhere"] == (U < dgamma)
     if not criterion:
         assert st["range"] == 0 and st["pastewka_robbins"] == 0 and st["generalized_tabor"] == 0
+        assert st["sticky"] is (True if U < dgamma else None)  # zero range, partial contact: the run tells
         return
     dr = 0.002 if "exponential_range" in criterion else dgamma / 0.05
     assert st["range"] == pytest.approx(dr, rel=1e-14)
+    # the form the Adhesion package's rough example evaluates (P&R eq. 10, kappa_rep = 2, d_rep = 4 h'/h'')
     pr = h1 * Estar * dr / (2 * dgamma) * (h1 ** 2 / (h2 * dr)) ** (2 / 3)
     assert st["pastewka_robbins"] == pytest.approx(pr, rel=1e-10)
     assert st["generalized_tabor"] == pytest.approx(((1 / h2) * dgamma ** 2 / (Estar ** 2 * dr ** 3)) ** (1 / 3), rel=1e-10)
@@ -106,6 +108,8 @@ def test_the_verdict_is_what_the_run_does(tmp_path):
     assert ratio > 3 and "partial contact" in line, line
     with h5py.File(tmp_path / "weak.h5", "r") as f:
         assert not f.attrs["sticks_everywhere"]
+        assert "sticky" not in f.attrs  # a zero-range criterion: the run tells, as the line says
+        assert f.attrs["stickiness_work_of_adhesion"] == pytest.approx(0.0005, rel=1e-14)
         assert (f["curve/contact_points"][:] < 32 * 32).all()
 
 

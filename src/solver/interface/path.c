@@ -509,6 +509,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscCheck(!s->writer, s->comm, PETSC_ERR_ORDER, "%s is being written state by state (AdhSolverOutputBegin(), Python's iterate_path(output=...)): end it before solving the path", s->writer_file);
   PetscCall(AdhSolverSetUp(s));
   PetscCall(CheckPath(s));
   PetscCall(AdhCurveDestroy_Private(&s->curve));

@@ -108,15 +108,15 @@ PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver s, const AdhState *st,
   PetscFunctionBegin;
   words[0] = 0;
   if (why & ADH_UNRESOLVED_PATCHES) {
-    PetscCall(PetscSNPrintf(part, sizeof(part), "%.0f%% of the tension on patches of fewer than %d elements, over 10%%", 100.0 * (double)st->small_patch_tension, ADH_RESOLVED_PATCH));
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%.3g%% of the tension on patches of fewer than %d elements, over %g%%", 100.0 * (double)st->small_patch_tension, ADH_RESOLVED_PATCH, 100.0 * ADH_RESOLVED_SHARE));
     PetscCall(PetscStrlcat(words, part, len));
   }
   if (why & ADH_UNRESOLVED_ASPERITIES) {
-    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe JKR contact radius of %s, %.3g grid spacings, under 10", words[0] ? "; " : "", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities", (double)s->asperity_ac));
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe JKR contact radius of %s, %.3g grid spacings, under %d", words[0] ? "; " : "", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities", (double)s->asperity_ac, ADH_RESOLVED_RADIUS));
     PetscCall(PetscStrlcat(words, part, len));
   }
   if (why & ADH_UNRESOLVED_ZONE) {
-    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe cohesive zone, %.3g grid spacings wide, under 10", words[0] ? "; " : "", (double)AdhSolverCohesiveWidth_Private(s, st)));
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe cohesive zone, %.3g grid spacings wide, under %d", words[0] ? "; " : "", (double)AdhSolverCohesiveWidth_Private(s, st), ADH_RESOLVED_ZONE));
     PetscCall(PetscStrlcat(words, part, len));
   }
   PetscFunctionReturn(0);

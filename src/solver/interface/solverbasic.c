@@ -410,10 +410,11 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
     *solver = NULL;
     PetscFunctionReturn(0);
   }
+  /* first, while the solver is whole: a file of AdhSolverOutputBegin() left open ends incomplete */
+  PetscCall(AdhSolverOutputEnd(s, PETSC_FALSE));
   if (s->cops.base.destroy) PetscCall(s->cops.base.destroy(s));
   if (s->crops.base.destroy) PetscCall(s->crops.base.destroy(s));
   if (s->pops.base.destroy) PetscCall(s->pops.base.destroy(s));
-  PetscCall(AdhSolverOutputEnd(s, PETSC_FALSE)); /* a file of AdhSolverOutputBegin() left open: incomplete */
   PetscCall(PetscFree(s->field_states));
   if (s->journal) fclose(s->journal);
   PetscCall(VecDestroy(&s->attach_limit));

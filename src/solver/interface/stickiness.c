@@ -10,10 +10,12 @@
    - Pastewka & Robbins (PNAS 111, 3298, 2014, eq. 10, with kappa_rep = 2 and
      d_rep = 4 h'_rms / h''_rms): the surfaces are sticky (a finite force pulls them apart) when
      h'_rms E* Delta r / (2 dgamma) (h'_rms^2 / (h''_rms Delta r))^(2/3) < 1, Delta r the range of
-     the attraction; derived for short but finite ranges, from the DMT side.
-   - The generalised Tabor parameter (after Müser, Beilstein J. Nanotechnol. 5, 419, 2014):
-     mu_T = (R dgamma^2 / (E*^2 Delta r^3))^(1/3) with R = 1/h''_rms; above about 1 the smallest
-     asperities' contacts are JKR-like, below DMT-like.
+     the attraction; derived for short but finite ranges, from the DMT side. The same form as the
+     Adhesion package's rough example.
+   - The generalised Tabor parameter (Müser's single-asperity Tabor parameter, Beilstein J.
+     Nanotechnol. 5, 419, 2014, with the Adhesion package's R = 1/h''_rms for a rough surface):
+     mu_T = (R dgamma^2 / (E*^2 Delta r^3))^(1/3); above about 1 the smallest asperities'
+     contacts are JKR-like, below DMT-like.
 
    h'_rms is the rms of |grad h| and h''_rms the rms of the mean curvature, half the Laplacian (the
    conventions of SurfaceTopography, with which the Adhesion package evaluates the same criteria);

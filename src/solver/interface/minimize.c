@@ -36,6 +36,8 @@ struct _n_AdhMinimizer {
   Vec      r, rp, z, t; /* the gradient, its projection on the free points, the preconditioned one, the direction */
   Vec      work, pold; /* scratch, and the elastic pressure before a step */
   Vec      u, rpold;   /* the elastic displacement v - b, and the previous projected gradient (Polak-Ribiere) */
+  Vec      w, wr;       /* the preconditioner's scaling where the law stiffens the energy, and w r (NULL until needed) */
+  PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
   PetscReal dgamma;     /* the largest work of adhesion present (the scales of the law: its range and peak) */
@@ -102,6 +104,8 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->pold));
   PetscCall(VecDestroy(&m->u));
   PetscCall(VecDestroy(&m->rpold));
+  PetscCall(VecDestroy(&m->w));
+  PetscCall(VecDestroy(&m->wr));
   PetscCall(PetscFree(m->active));
   PetscCall(PetscFree(s->minimizer));
   PetscFunctionReturn(0);
@@ -113,6 +117,7 @@ static PetscErrorCode Create(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&m));
+  m->K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
   if (s->boundary == ADH_BOUNDARY_PERIODIC) {
     m->S = s->S;
     m->C = s->K;
@@ -199,17 +204,62 @@ static PetscErrorCode ApplyMeanFree(AdhSolver s, Mat A, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* z = K r, with under a force the compliance of the longest wave, 2/(E* q_min), on the mean
-   mode (the cell's has none; there the mean gap is free, and it needs the step a wave of the
-   cell's size would take). */
-static PetscErrorCode Precondition(AdhSolver s, PetscBool force, Vec r, Vec z)
+static inline void Law(AdhSolver, const PetscScalar *, PetscInt, PetscReal, PetscReal *, PetscReal *, PetscReal *);
+
+/* Where the law stiffens the energy (phi'' > 0: a Lennard-Jones law near the wall) far beyond an
+   element's elastic stiffness 1/K00, the compliance alone preconditions badly: the scaling
+   w = 1/sqrt(1 + K00 phi''+) on each side, W K W, keeps the preconditioner symmetric and makes
+   its diagonal the inverse of the Hessian's. Returns whether any w differs from 1 (a law that
+   never stiffens, as the exponential, keeps K itself). */
+static PetscErrorCode CurvatureScaling(AdhSolver s, const PetscScalar *gamma, PetscBool *scaled)
 {
-  PetscScalar sum;
+  AdhMinimizer       m = s->minimizer;
+  const PetscScalar *va;
+  PetscScalar       *wa;
+  PetscInt           any = 0;
 
   PetscFunctionBegin;
+  if (!m->w) {
+    PetscCall(VecDuplicate(m->v, &m->w));
+    PetscCall(VecDuplicate(m->v, &m->wr));
+  }
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayWrite(m->w, &wa));
+  for (PetscInt k = 0; k < m->n; k++) {
+    PetscReal phi, dphi, ddphi;
+    Law(s, gamma, k, PetscRealPart(va[k]), &phi, &dphi, &ddphi);
+    wa[k] = 1.0;
+    if (ddphi > 0 && !m->active[k]) {
+      wa[k] = 1.0 / PetscSqrtReal(1.0 + m->K00 * ddphi);
+      any   = 1;
+    }
+  }
+  PetscCall(VecRestoreArrayWrite(m->w, &wa));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &any, 1, MPIU_INT, MPI_MAX, s->comm));
+  *scaled = (PetscBool)any;
+  PetscFunctionReturn(0);
+}
+
+/* z = K r (W K W r where the law stiffens the energy), with under a force the compliance of the
+   longest wave, 2/(E* q_min), on the mean mode (the cell's has none; there the mean gap is free,
+   and it needs the step a wave of the cell's size would take). */
+static PetscErrorCode Precondition(AdhSolver s, const PetscScalar *gamma, PetscBool force, Vec r, Vec z)
+{
+  AdhMinimizer m = s->minimizer;
+  PetscScalar  sum;
+  PetscBool    scaled;
+
+  PetscFunctionBegin;
+  PetscCall(CurvatureScaling(s, gamma, &scaled));
+  if (scaled) {
+    PetscCall(VecPointwiseMult(m->wr, m->w, r));
+    r = m->wr;
+  }
   PetscCall(VecSum(r, &sum));
-  PetscCall(ApplyMeanFree(s, s->minimizer->C, r, z));
+  PetscCall(ApplyMeanFree(s, m->C, r, z));
   if (force) PetscCall(VecShift(z, 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly)) * sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
+  if (scaled) PetscCall(VecPointwiseMult(z, m->w, z));
   PetscFunctionReturn(0);
 }
 
@@ -598,7 +648,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
     }
     /* the direction: preconditioned projected gradient, conjugated unless the held points changed */
     if (s->minimize_pc && !steepest) {
-      PetscCall(Precondition(s, force, m->rp, m->z));
+      PetscCall(Precondition(s, gamma, force, m->rp, m->z));
       PetscCall(RestrictToFree(s, fixmean, m->z));
     } else PetscCall(VecCopy(m->rp, m->z));
     PetscCall(VecDot(m->z, m->rp, &dot));

@@ -219,6 +219,7 @@ typedef const char *AdhCriterionType;
 #define ADHCRITERIONCRACKCLOSURE "crack-closure"
 #define ADHCRITERIONDUGDALE      "dugdale"
 #define ADHCRITERIONEXPONENTIAL  "exponential"
+#define ADHCRITERIONLJ93         "lj93"
 PETSC_EXTERN PetscErrorCode AdhCriterionRegister(const char[], PetscErrorCode (*)(AdhSolver));
 PETSC_EXTERN PetscErrorCode AdhSolverSetCriterionType(AdhSolver, AdhCriterionType);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCriterionType(AdhSolver, AdhCriterionType *);

@@ -45,7 +45,7 @@ def test_defaults_are_the_libraries():
     assert table["gamma"].default == 0.0 and table["gamma"].kind == "real"
     assert table["steps"].default == 10 and table["steps"].kind == "int"
     assert table["certify"].default is True and table["criterion_certify"].default is False
-    assert sorted(table["criterion"].choices) == ["crack-closure", "dugdale", "exponential", "pohrt-popov"]  # PETSc 3.2x lists them sorted
+    assert sorted(table["criterion"].choices) == ["crack-closure", "dugdale", "exponential", "lj93", "pohrt-popov"]  # PETSc 3.2x lists them sorted
     assert table["boundary"].default == "free" and table["boundary"].choices == ("free", "periodic")
     assert table["rms_slope"].default == 0.1  # unless rms_height is given
     assert table["rms_height"].default is None and table["rolloff_wavelength"].default is None  # derived from the grid

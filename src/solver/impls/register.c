@@ -7,6 +7,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhCriterionCreate_LJ93(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhControlCreate_Displacement(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhControlCreate_Force(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhPredictorCreate_None(AdhSolver);
@@ -20,6 +21,7 @@ PetscErrorCode AdhSolverRegisterAll_Private(void)
   PetscCall(AdhCriterionRegister(ADHCRITERIONCRACKCLOSURE, AdhCriterionCreate_CrackClosure));
   PetscCall(AdhCriterionRegister(ADHCRITERIONDUGDALE, AdhCriterionCreate_Dugdale));
   PetscCall(AdhCriterionRegister(ADHCRITERIONEXPONENTIAL, AdhCriterionCreate_Exponential));
+  PetscCall(AdhCriterionRegister(ADHCRITERIONLJ93, AdhCriterionCreate_LJ93));
   PetscCall(AdhControlRegister(ADHCONTROLDISPLACEMENT, AdhControlCreate_Displacement));
   PetscCall(AdhControlRegister(ADHCONTROLFORCE, AdhControlCreate_Force));
   PetscCall(AdhPredictorRegister(ADHPREDICTORNONE, AdhPredictorCreate_None));

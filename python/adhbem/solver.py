@@ -506,7 +506,8 @@ class Solver:
         """Whether a rough surface is sticky, estimated at set-up from its heights (the line
         ``solve_path()`` prints first), as a dict; ``None`` without an estimate (it is made for a
         rough surface, a topography file or an array, with adhesion, on either boundary; on the free
-        boundary the slope and curvature are central differences over the map's interior points and
+        boundary the slope is from forward and the curvature from second differences, as
+        SurfaceTopography takes them for a map, and
         U_el is that of the map less its mean plane taken as one periodic cell):
 
         - ``rms_slope``, ``rms_curvature``: h'_rms (the rms of the gradient's length) and h''_rms

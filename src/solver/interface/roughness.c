@@ -5,13 +5,17 @@
    On a periodic cell all three come from the stiffness S = E* |q| / 2 on the mean-free heights, exact
    in the spectral sense: |S h| = (E* / 2) |grad h| and S S h = -(E* / 2)^2 Lap h in the mean, and the
    energy is <h S h>/2. A measured map on the free boundary is not periodic, and its edges would
-   count as steps: there the slope and curvature are central differences over the interior points
-   (a rank fetches the rows above and below its own), and the energy is the stiffness's on the map
-   with its mean plane removed, the map taken as one cell of a periodic surface (its edge steps add
-   a little energy, of relative order h_rms / (h'_rms L)). */
+   count as steps: there the slope is the forward differences between neighbouring points and the
+   curvature the three-point second differences at the interior points, as SurfaceTopography takes
+   them for a map (a rank fetches the rows above and below its own); they read a wave of kh as
+   sinc(kh/2) and sinc(kh/2)^2 of its spectral value (0.90 and 0.81 at a cut-off of 4 spacings).
+   The energy is the stiffness's on the map with its mean plane removed, the map taken as one cell
+   of a periodic surface (its edge steps add a little energy, of relative order
+   h_rms / (h'_rms L)). */
 #include "solver/solverimpl.h"
 
-/* Central differences over the interior points (both neighbours on the grid in x and in y). */
+/* The slope from forward differences over every pair of neighbours, <(dh/dx)^2> + <(dh/dy)^2>
+   each averaged over its pairs; the curvature from second differences at the interior points. */
 static PetscErrorCode FiniteDifferences(AdhSolver s, PetscReal *slope, PetscReal *curvature)
 {
   AdhGrid            g  = s->grid;
@@ -22,7 +26,7 @@ static PetscErrorCode FiniteDifferences(AdhSolver s, PetscReal *slope, PetscReal
   MPI_Datatype       row;
   const PetscScalar *ha;
   PetscScalar       *ghost;
-  PetscReal          sums[3] = {0.0, 0.0, 0.0}; /* |grad h|^2, (Lap h / 2)^2, points */
+  PetscReal          sums[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; /* (dh/dx)^2 and its pairs, (dh/dy)^2 and its pairs, (Lap h / 2)^2 and its points */
 
   PetscFunctionBegin;
   if (ym > 0 && ys > 0) {
@@ -39,24 +43,34 @@ static PetscErrorCode FiniteDifferences(AdhSolver s, PetscReal *slope, PetscReal
   PetscCall(VecGetArrayRead(s->h, &ha));
   PetscCall(PetscSFBcastBegin(sf, row, ha, ghost, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sf, row, ha, ghost, MPI_REPLACE));
-  for (PetscInt j = PetscMax(ys, 1); j < PetscMin(ys + ym, Ny - 1); j++) {
+  for (PetscInt j = ys; j < ys + ym; j++) {
     const PetscScalar *mid = ha + (j - ys) * Nx;
-    const PetscScalar *dn  = j - 1 >= ys ? mid - Nx : ghost + below * Nx;
-    const PetscScalar *up  = j + 1 < ys + ym ? mid + Nx : ghost + above * Nx;
-    for (PetscInt i = 1; i < Nx - 1; i++) {
-      const PetscReal gx = PetscRealPart(mid[i + 1] - mid[i - 1]) / (2.0 * hx), gy = PetscRealPart(up[i] - dn[i]) / (2.0 * hy);
-      const PetscReal lap = PetscRealPart(mid[i + 1] - 2.0 * mid[i] + mid[i - 1]) / (hx * hx) + PetscRealPart(up[i] - 2.0 * mid[i] + dn[i]) / (hy * hy);
-      sums[0] += gx * gx + gy * gy;
-      sums[1] += 0.25 * lap * lap;
-      sums[2] += 1.0;
+    const PetscScalar *up  = j + 1 >= Ny ? NULL : j + 1 < ys + ym ? mid + Nx : ghost + above * Nx;
+    const PetscScalar *dn  = j == 0 ? NULL : j - 1 >= ys ? mid - Nx : ghost + below * Nx;
+    for (PetscInt i = 0; i < Nx; i++) {
+      if (i + 1 < Nx) {
+        const PetscReal gx = PetscRealPart(mid[i + 1] - mid[i]) / hx;
+        sums[0] += gx * gx;
+        sums[1] += 1.0;
+      }
+      if (up) {
+        const PetscReal gy = PetscRealPart(up[i] - mid[i]) / hy;
+        sums[2] += gy * gy;
+        sums[3] += 1.0;
+      }
+      if (up && dn && i > 0 && i + 1 < Nx) {
+        const PetscReal lap = PetscRealPart(mid[i + 1] - 2.0 * mid[i] + mid[i - 1]) / (hx * hx) + PetscRealPart(up[i] - 2.0 * mid[i] + dn[i]) / (hy * hy);
+        sums[4] += 0.25 * lap * lap;
+        sums[5] += 1.0;
+      }
     }
   }
   PetscCall(VecRestoreArrayRead(s->h, &ha));
   PetscCall(PetscFree(ghost));
   PetscCall(PetscSFDestroy(&sf));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 3, MPIU_REAL, MPIU_SUM, s->comm));
-  *slope     = sums[2] > 0 ? PetscSqrtReal(sums[0] / sums[2]) : 0.0;
-  *curvature = sums[2] > 0 ? PetscSqrtReal(sums[1] / sums[2]) : 0.0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 6, MPIU_REAL, MPIU_SUM, s->comm));
+  *slope     = sums[1] > 0 && sums[3] > 0 ? PetscSqrtReal(sums[0] / sums[1] + sums[2] / sums[3]) : 0.0;
+  *curvature = sums[5] > 0 ? PetscSqrtReal(sums[4] / sums[5]) : 0.0;
   PetscFunctionReturn(0);
 }
 

@@ -74,8 +74,8 @@ PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver s)
 
   Notes:
   Made for a rough surface, a topography file or an array with adhesion (st->estimated), on either boundary; with a
-  dgamma field its mean counts. On the free boundary the slope and curvature are central differences over the map's
-  interior points, and U_el is that of the map with its mean plane removed taken as one periodic cell. The criteria:
+  dgamma field its mean counts. On the free boundary the slope is from forward differences and the curvature from
+  second differences (as SurfaceTopography takes them for a map), and U_el is that of the map with its mean plane removed taken as one periodic cell. The criteria:
 
   Persson and Tosatti (2001): st->persson_tosatti = U_el / (dgamma A0), U_el the elastic energy that flattens the
   surface (full contact), exact on a periodic cell. Below 1 full contact is the state of least energy at zero load:

@@ -316,7 +316,7 @@ typedef struct {
   PetscInt  smallest_tensile_patch;  /* points of the smallest patch with a net tension there */
   PetscBool resolved;                /* the grid resolves the adhesion (meaningful when state >= 0) */
   PetscReal cohesive_elements;       /* a finite-range criterion: the elements its cohesive zone covers there (0: none) */
-  PetscReal cohesive_width;          /* and how many grid spacings wide it is: a sphere's annulus around the contact's disk, else the zone's area over the contact's perimeter (0: none) */
+  PetscReal cohesive_width;          /* and how many grid spacings wide it is: a sphere's annulus around the contact's disk, else the zone's area over the mean of its inner and outer edges (0: none) */
   PetscInt  apart;                   /* the first state where the surfaces came apart (pulled_off): only then is the largest tension the pull-off force (-1: they did not) */
   PetscInt  full_contact;            /* the first state in full contact, every point of the grid in the contact set (-1: none) */
   PetscInt  last_points;             /* the points in contact at the last state (the path ended with them when not apart) */
@@ -326,7 +326,7 @@ typedef struct {
 /* The verdict's rule: the grid resolves the adhesion at the state of largest tension unless */
 #define ADH_UNRESOLVED_PATCHES    1 /* more than 10% of the tension is carried by patches of fewer than ADH_RESOLVED_PATCH points */
 #define ADH_UNRESOLVED_ASPERITIES 2 /* the set-up estimate of the smallest asperities' (or the sphere's) JKR radius is under 10 grid spacings */
-#define ADH_UNRESOLVED_ZONE       4 /* a sphere's cohesive zone is under 10 grid spacings wide */
+#define ADH_UNRESOLVED_ZONE       4 /* the cohesive zone is under 10 grid spacings wide */
 PETSC_EXTERN PetscErrorCode AdhSolverGetResolution(AdhSolver, AdhResolution *);
 /* Whether a rough surface is sticky, estimated at set-up from its heights (either boundary): the
    elastic energy of full contact against the work of adhesion (Persson & Tosatti 2001), and with a

@@ -112,6 +112,11 @@ PETSC_INTERN PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver, PetscViewer
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverMinimizeMultCount_Private(AdhSolver, PetscInt *);
 PETSC_INTERN PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver);
+/* The ops every smooth cohesive law shares (interface/cohesivelaw.c). */
+PETSC_INTERN PetscErrorCode AdhSolverLawSetUp_Private(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhSolverLawEvaluate_Private(AdhSolver, PetscBool, PetscInt *, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhSolverLawMemory_Private(AdhSolver, PetscLogDouble *, PetscLogDouble *);
+PETSC_INTERN PetscErrorCode AdhSolverLawDestroy_Private(AdhSolver);
 
 /* What a contact-set predictor does (impls/predictor/): guess a step's set and pressure without
    adhesion, at an indentation or carrying a force (force true); NULL predict: no guess. */

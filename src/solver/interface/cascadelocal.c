@@ -51,7 +51,7 @@ static PetscErrorCode PCApply_Window(PC pc, Vec r, Vec z)
 /* The window's half-width in grid spacings, local_W = ceil(F a_c / h) for -adh_cascade_local F,
    from the run's estimate of the smallest asperities' JKR radius a_c (resolution.c), at least one
    spacing and at most the grid; without an estimate (no dgamma, a fixed critical stress, a
-   topography on the free boundary) the whole grid. Made again with each profile (the estimate
+   profile other than a sphere or a rough surface or map) the whole grid. Made again with each profile (the estimate
    changes with it), and the band of marks widened to it. */
 PetscErrorCode AdhSolverSetLocalWidth_Private(AdhSolver s)
 {

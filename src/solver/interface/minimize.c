@@ -20,7 +20,8 @@
 #include "solver/solverimpl.h"
 
 /* Under a force, every gap beyond this many zone gaps: the attraction is gone (exp(-69) of its
-   peak for the exponential law) and the energy falls without bound, no minimum. */
+   peak for the exponential law, 1e-6 for the 9-3 law's g^-4 tail) and the energy falls without
+   bound, no minimum. */
 #define ADH_RUNAWAY 30.0
 /* A step is halved at most this often before the direction is given up. */
 #define ADH_MAX_HALVINGS 10
@@ -61,11 +62,13 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   PetscFunctionReturn(0);
 }
 
-/* The bytes a grid point costs the minimisation: ten of its vectors and two bytes of marks per
-   variable, a variable a point on a periodic cell and four on the free boundary's padded grid. */
+/* The bytes a grid point costs the minimisation: its fourteen vectors (the two of the
+   preconditioner's scaling made only for a law that stiffens the energy, counted always) and two
+   bytes of marks per variable, a variable a point on a periodic cell and four on the free
+   boundary's padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (12.0 * sizeof(PetscScalar) + 2.0);
+  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (14.0 * sizeof(PetscScalar) + 2.0);
 }
 
 /* Its lines in the law's -adh_view. */
@@ -208,8 +211,8 @@ static inline void Law(AdhSolver, const PetscScalar *, PetscInt, PetscReal, Pets
 
 /* Where the law stiffens the energy (phi'' > 0: a Lennard-Jones law near the wall) far beyond an
    element's elastic stiffness 1/K00, the compliance alone preconditions badly: the scaling
-   w = 1/sqrt(1 + K00 phi''+) on each side, W K W, keeps the preconditioner symmetric and makes
-   its diagonal the inverse of the Hessian's. Returns whether any w differs from 1 (a law that
+   w = 1/sqrt(1 + K00 phi''+) on each side, W K W, keeps the preconditioner symmetric and brings
+   its diagonal near the inverse of the Hessian's (as far as the stiffness's diagonal is 1/K00). Returns whether any w differs from 1 (a law that
    never stiffens, as the exponential, keeps K itself). */
 static PetscErrorCode CurvatureScaling(AdhSolver s, const PetscScalar *gamma, PetscBool *scaled)
 {
@@ -462,7 +465,7 @@ static PetscErrorCode Slope(AdhSolver s, const PetscScalar *gamma, const PetscRe
     x = v + a * t;
     Law(s, gamma, k, v, &phi, &dphi0, &ddphi0);
     /* below the wall the law goes on linearly: the projection puts the point at the wall, where
-       it holds the law's largest attraction (not none) */
+       it holds the law's attraction at contact (the exponential's largest; the 9-3 law's none) */
     Law(s, gamma, k, PetscMax(x, 0.0), &phi, &dphi, &ddphi);
     if (x < 0) ddphi = 0.0;
     sc[0] += t * (dphi - dphi0); /* tr0 holds t.(pel + phi'(v) + pbar) */

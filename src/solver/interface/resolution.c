@@ -84,7 +84,7 @@ PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
 
 /* Why the grid does not resolve the adhesion at state st (ADH_UNRESOLVED_* flags; 0: it does): the
    patches that carry the tension must be large, and so must the smallest asperities' contacts and
-   a sphere's cohesive zone. The one rule of every verdict (line, results file, Python). */
+   a finite-range criterion's cohesive zone. The one rule of every verdict (line, results file, Python). */
 PetscInt AdhSolverUnresolved_Private(AdhSolver s, const AdhState *st)
 {
   const PetscReal width = AdhSolverCohesiveWidth_Private(s, st);

@@ -55,30 +55,6 @@ static PetscReal Peak_Exponential(const void *data, PetscReal dgamma)
   return dgamma / ((const Exponential *)data)->rho;
 }
 
-/* Without detach: the largest tension on the contact over the law's largest (at most 1 in an
-   equilibrium). It never lets points go itself: the minimisation does. */
-static PetscErrorCode Evaluate_Exponential(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
-{
-  Exponential       *ex = (Exponential *)s->crops.data;
-  const PetscScalar *pa, *gamma = NULL;
-  PetscReal          r = 0.0;
-
-  PetscFunctionBegin;
-  PetscCheck(!detach, s->comm, PETSC_ERR_PLIB, "A cohesive law's steps minimise the energy: no detach test");
-  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
-  PetscCall(VecGetArrayRead(s->p, &pa));
-  for (PetscInt k = 0; k < s->nlocal; k++) {
-    const PetscReal dgamma = s->adhesive ? (gamma ? PetscRealPart(gamma[k]) : s->gamma) : 0.0, p = PetscRealPart(pa[k]);
-    if (!s->in_set[k] || p >= 0) continue;
-    r = dgamma > 0 ? PetscMax(r, -p * ex->rho / dgamma) : PETSC_MAX_REAL;
-  }
-  PetscCall(VecRestoreArrayRead(s->p, &pa));
-  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
-  PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
-  if (removed) *removed = 0;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode SetFromOptions_Exponential(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   Exponential *ex = (Exponential *)s->crops.data;
@@ -96,11 +72,7 @@ static PetscErrorCode SetUp_Exponential(AdhSolver s)
   PetscFunctionBegin;
   PetscCheck(ex->rho > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_criterion exponential needs the range: give -adh_exponential_range RHO (> 0)");
   PetscCheck(ex->rho < PetscMax(s->grid->Lx, s->grid->Ly), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_exponential_range %g is not below the cell's side %g: the law's range must be short against the geometry", (double)ex->rho, (double)PetscMax(s->grid->Lx, s->grid->Ly));
-  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion exponential with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control");
-  PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion exponential, whose largest tension is dgamma/rho");
-  PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion exponential: the hard wall is the bound of its energy minimisation");
-  PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion exponential");
-  PetscCheck(!(s->cascade_local > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local does not apply to -adh_criterion exponential");
+  PetscCall(AdhSolverLawSetUp_Private(s));
   PetscFunctionReturn(0);
 }
 
@@ -149,15 +121,6 @@ static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The minimisation's vectors (AdhSolverMinimizeMemory_Private). */
-static PetscErrorCode Memory_Exponential(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
-{
-  PetscFunctionBegin;
-  *per_point = AdhSolverMinimizeMemory_Private(s);
-  *per_rank  = 0.0;
-  PetscFunctionReturn(0);
-}
-
 /* The range and the minimisation's tolerance shape the answer: a restart repeats them. */
 static PetscErrorCode Shape_Exponential(AdhSolver s, PetscInt *n, AdhShapingOption shape[])
 {
@@ -170,14 +133,6 @@ static PetscErrorCode Shape_Exponential(AdhSolver s, PetscInt *n, AdhShapingOpti
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_Exponential(AdhSolver s)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhSolverMinimizeDestroy_Private(s));
-  PetscCall(PetscFree(s->crops.data));
-  PetscFunctionReturn(0);
-}
-
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
 {
   Exponential *ex;
@@ -187,7 +142,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
   s->crops.data                = ex;
   s->crops.attach              = ADH_ATTACH_PENETRATION;
   s->crops.cohesive            = PETSC_TRUE;
-  s->crops.evaluate            = Evaluate_Exponential;
+  s->crops.evaluate            = AdhSolverLawEvaluate_Private;
   s->crops.law                 = Law_Exponential;
   s->crops.zone_gap            = ZoneGap_Exponential;
   s->crops.peak                = Peak_Exponential;
@@ -198,7 +153,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Exponential(AdhSolver s)
   s->crops.base.view           = View_Exponential;
   s->crops.base.setup          = SetUp_Exponential;
   s->crops.base.shape          = Shape_Exponential;
-  s->crops.base.memory         = Memory_Exponential;
-  s->crops.base.destroy        = Destroy_Exponential;
+  s->crops.base.memory         = AdhSolverLawMemory_Private;
+  s->crops.base.destroy        = AdhSolverLawDestroy_Private;
   PetscFunctionReturn(0);
 }

@@ -39,7 +39,7 @@ static PetscReal Shape(PetscReal x)
   const PetscReal x4 = x * x * x * x;
   return x4 * (1.0 - x4 * x * x);
 }
-#define ADH_LJ93_XPEAK PetscPowReal(0.4, 1.0 / 6.0)
+#define ADH_LJ93_XPEAK 0.858374218932557 /* (2/5)^(1/6) */
 
 static void Law_LJ93(const void *data, PetscReal dgamma, PetscReal g, PetscReal *phi, PetscReal *dphi, PetscReal *ddphi)
 {
@@ -61,29 +61,6 @@ static PetscReal ZoneGap_LJ93(const void *data, PetscReal dgamma)
   return ((const LJ93 *)data)->zone * ((const LJ93 *)data)->z0;
 }
 
-/* The tension on the contact is the wall's business here (the law's is 0 at contact): the largest
-   tension on the set over the law's peak, 0 in an equilibrium. */
-static PetscErrorCode Evaluate_LJ93(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
-{
-  const PetscScalar *pa, *gamma = NULL;
-  PetscReal          r = 0.0;
-
-  PetscFunctionBegin;
-  PetscCheck(!detach, s->comm, PETSC_ERR_PLIB, "A cohesive law's steps minimise the energy: no detach test");
-  if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
-  PetscCall(VecGetArrayRead(s->p, &pa));
-  for (PetscInt k = 0; k < s->nlocal; k++) {
-    const PetscReal dgamma = s->adhesive ? (gamma ? PetscRealPart(gamma[k]) : s->gamma) : 0.0, p = PetscRealPart(pa[k]);
-    if (!s->in_set[k] || p >= 0) continue;
-    r = dgamma > 0 ? PetscMax(r, -p / Peak_LJ93(s->crops.data, dgamma)) : PETSC_MAX_REAL;
-  }
-  PetscCall(VecRestoreArrayRead(s->p, &pa));
-  if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
-  PetscCall(MPIU_Allreduce(&r, ratio, 1, MPIU_REAL, MPIU_MAX, s->comm));
-  if (removed) *removed = 0;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode SetFromOptions_LJ93(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   LJ93 *lj = (LJ93 *)s->crops.data;
@@ -102,13 +79,9 @@ static PetscErrorCode SetUp_LJ93(AdhSolver s)
   PetscFunctionBegin;
   PetscCheck(lj->z0 > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_criterion lj93 needs the equilibrium distance: give -adh_lj93_distance Z0 (> 0)");
   PetscCheck(lj->z0 < PetscMax(s->grid->Lx, s->grid->Ly), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_lj93_distance %g is not below the cell's side %g: the law's range must be short against the geometry", (double)lj->z0, (double)PetscMax(s->grid->Lx, s->grid->Ly));
-  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion lj93 with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control");
-  PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion lj93, whose largest tension is 1.466 dgamma/z0");
-  PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion lj93: the hard wall is the bound of its energy minimisation");
-  PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion lj93");
-  PetscCheck(!(s->cascade_local > 0), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_local does not apply to -adh_criterion lj93");
+  PetscCall(AdhSolverLawSetUp_Private(s));
   /* the tail's x where the tension is a tenth of the peak, by bisection (the shape rises on [0, peak]) */
-  for (PetscInt it = 0; it < 200; it++) {
+  for (PetscInt it = 0; it < 60; it++) {
     const PetscReal mid = 0.5 * (lo + hi);
     if (Shape(mid) < tenth) lo = mid;
     else hi = mid;
@@ -155,14 +128,6 @@ static PetscErrorCode View_LJ93(AdhSolver s, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Memory_LJ93(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
-{
-  PetscFunctionBegin;
-  *per_point = AdhSolverMinimizeMemory_Private(s);
-  *per_rank  = 0.0;
-  PetscFunctionReturn(0);
-}
-
 /* The distance and the minimisation's tolerance shape the answer: a restart repeats them. */
 static PetscErrorCode Shape_LJ93(AdhSolver s, PetscInt *n, AdhShapingOption shape[])
 {
@@ -175,14 +140,6 @@ static PetscErrorCode Shape_LJ93(AdhSolver s, PetscInt *n, AdhShapingOption shap
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_LJ93(AdhSolver s)
-{
-  PetscFunctionBegin;
-  PetscCall(AdhSolverMinimizeDestroy_Private(s));
-  PetscCall(PetscFree(s->crops.data));
-  PetscFunctionReturn(0);
-}
-
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_LJ93(AdhSolver s)
 {
   LJ93 *lj;
@@ -192,7 +149,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_LJ93(AdhSolver s)
   s->crops.data                = lj;
   s->crops.attach              = ADH_ATTACH_PENETRATION;
   s->crops.cohesive            = PETSC_TRUE;
-  s->crops.evaluate            = Evaluate_LJ93;
+  s->crops.evaluate            = AdhSolverLawEvaluate_Private;
   s->crops.law                 = Law_LJ93;
   s->crops.zone_gap            = ZoneGap_LJ93;
   s->crops.peak                = Peak_LJ93;
@@ -203,7 +160,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_LJ93(AdhSolver s)
   s->crops.base.view           = View_LJ93;
   s->crops.base.setup          = SetUp_LJ93;
   s->crops.base.shape          = Shape_LJ93;
-  s->crops.base.memory         = Memory_LJ93;
-  s->crops.base.destroy        = Destroy_LJ93;
+  s->crops.base.memory         = AdhSolverLawMemory_Private;
+  s->crops.base.destroy        = AdhSolverLawDestroy_Private;
   PetscFunctionReturn(0);
 }

@@ -12,7 +12,10 @@ contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
     ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P] [--route fixed-point,minimize]
-        [--smoothing 0.2]
+        [--smoothing 0.2] [--n N]
+
+--n N: every lambda on one N^2 grid (the domain the largest one a lambda needs), the zone's width
+then falling as lambda grows: the cost on the same sphere and grid.
 
 --route: how the steps find the zone, each route on every case: the fixed point of set updates
 (Maugis' sharp law) and the energy minimisation of the law smoothed over --smoothing of its range
@@ -52,8 +55,11 @@ def case(lam, width):
     return s0, N, N * h, -P * force, a, zone, D * dscale
 
 
-def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2):
+def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None):
+    """One run; grid = (N, L) puts it on that grid instead of the one its zone's width sizes."""
     s0, N, L, F, a, zone, d_pull = case(lam, width)
+    if grid:
+        N, L = grid
     d0 = 0.5 * a * a  # a preload of about the pull-off contact's Hertz indentation
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "m.h5")
@@ -84,6 +90,8 @@ def main():
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--route", default="fixed-point,minimize", help="the routes to run: fixed-point, minimize or both")
     ap.add_argument("--smoothing", type=float, default=0.2, help="the minimize route's -adh_dugdale_smoothing")
+    ap.add_argument("--n", type=int, default=0, help="every lambda on this one grid (its domain the largest the lambdas need), "
+                    "instead of grids sized to --widths: the cost of the same sphere and grid as lambda grows")
     a = ap.parse_args()
     routes = a.route.split(",")
     for route in routes:
@@ -91,11 +99,17 @@ def main():
             sys.exit(f"bench maugis: --route: unknown route '{route}' (fixed-point, minimize)")
     lambdas = [float(v) for v in a.lambdas.split(",")]
     widths = [float(v) for v in a.widths.split(",")]
+    grid = None
+    if a.n:
+        if a.n < 8:
+            sys.exit(f"bench maugis: --n {a.n}: give a grid of 8 elements or more")
+        widths = widths[:1]
+        grid = (a.n, max(case(lam, widths[0])[2] for lam in lambdas))
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
     print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'iterations':>10} {'FFT pairs':>10} {'CPU s':>7}")
     for lam in lambdas:
         for route in routes:
-            rows = [run(lam, w, a.steps, a.np, route, a.smoothing) for w in widths]
+            rows = [run(lam, w, a.steps, a.np, route, a.smoothing, grid) for w in widths]
             P = rows[0]["exact"] / (math.pi * GAMMA)
             for k, r in enumerate(rows):
                 extra = ""

@@ -202,6 +202,7 @@ struct _p_AdhSolver {
   Mat           Kcontrol;       /* the operator of the set's equations on the whole grid where the control replaces K (force control on a periodic cell: K + c0 (1 1^T)/N; NULL: K) */
   PetscReal     Kcontrol_lambda; /* a lower bound on its eigenvalues beyond K's on the set */
   PetscBool     pulled_off;     /* the last step ended in pull-off */
+  PetscBool     law_apart;      /* a cohesive law's last minimisation found no state carrying the force: the bodies fly apart */
 
   /* contact-set predictor (impls/predictor/) */
   char            predictor_type[64];

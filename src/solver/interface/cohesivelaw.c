@@ -11,7 +11,6 @@ PetscErrorCode AdhSolverLawSetUp_Private(AdhSolver s)
   const char *law = s->criterion_type;
 
   PetscFunctionBegin;
-  PetscCheck(s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion %s with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control", law);
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion %s, whose largest tension is its law's", law);
   PetscCheck(!s->attach_chosen, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_attach does not apply to -adh_criterion %s: the hard wall is the bound of its energy minimisation", law);
   PetscCheck(!s->cascade_apart, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_cascade_apart does not apply to -adh_criterion %s", law);

@@ -573,9 +573,9 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBool *none)
+/* The minimum at d = target, or (force) under the force target on a periodic cell. */
+static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target, PetscBool *none)
 {
-  const PetscBool    force   = AdhSolverControlsForce_Private(s);
   const PetscBool    fixmean = (PetscBool)(!force && s->boundary == ADH_BOUNDARY_PERIODIC); /* a periodic cell's mean gap is held by d */
   const PetscReal    N = (PetscReal)s->grid->Nx * s->grid->Ny, cell = s->grid->Lx * s->grid->Ly;
   const PetscReal    pbar = force ? target / cell : 0.0;
@@ -589,7 +589,6 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
 
   PetscFunctionBegin;
   *none = PETSC_FALSE;
-  PetscCheck(!force || s->boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_criterion %s: a cohesive law under -adh_control force needs -adh_boundary periodic (on the free boundary its steps are under displacement control)", s->criterion_type);
   if (!s->minimizer) PetscCall(Create(s));
   m = s->minimizer;
   if (s->gamma_field && m->surface) { /* the field on the variables, none on the padding */
@@ -749,3 +748,133 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   PetscFunctionReturn(0);
 }
 
+
+/* The force the current state carries, and whether the bodies have come apart (no gap within the
+   law's zone: nothing attracts them any more). */
+static PetscErrorCode ForceOf(AdhSolver s, PetscReal zone, PetscReal *F, PetscBool *apart)
+{
+  PetscScalar sum;
+  PetscReal   gmin;
+
+  PetscFunctionBegin;
+  PetscCall(VecSum(s->p, &sum));
+  *F = PetscRealPart(sum) * s->grid->hx * s->grid->hy;
+  PetscCall(VecMin(s->g, NULL, &gmin));
+  *apart = (PetscBool)(gmin > zone);
+  PetscFunctionReturn(0);
+}
+
+/* One trial of the free boundary's force control: the minimum at d reached from the pressure
+   `from` (a state at a d on the step's side of this one, so that the trials walk along the branch
+   as displacement steps would), its force and whether the bodies came apart. */
+static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone, PetscReal *F, PetscBool *apart)
+{
+  PetscBool none;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(from, s->p));
+  PetscCall(MinimizeAt(s, PETSC_FALSE, d, &none));
+  PetscCall(ForceOf(s, zone, F, apart));
+  PetscFunctionReturn(0);
+}
+
+/* A free boundary's force-control trial moves d by at most this share of the law's zone gap where
+   the branch's force turns back (five times it where it gains): the steps of a
+   displacement-controlled path of some hundred states, fine enough that the march does not step
+   over the branch's largest tension (the force is flat there, its error of the second order in
+   the move). */
+#define ADH_FORCE_MOVE 0.02
+
+/* Force control on the free boundary, whose padded minimisation has no mean mode to carry a force:
+   the d on the step's branch at which the minimum carries the force T. From the step's state (d0,
+   F0) it marches towards T, each trial a minimisation at a fixed d from the last one accepted
+   (so the branch is followed as by displacement steps), by secant moves of at most
+   ADH_FORCE_MOVE zone gaps. Past T, regula falsi (Illinois) between the last two, each trial from
+   the nearer. Where the branch's force turns back before T (a few points letting go at once), the
+   march goes on through it: under the force the state snaps through to the next one that carries
+   it. A move whose trial comes apart is halved; when it has shrunk to nothing the bodies let go
+   before T is reached: none, and the control bisects the force for the pull-off, the largest
+   tension the branch carries before the bodies come apart. */
+static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *none)
+{
+  PetscReal dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d;
+  PetscBool apart, found;
+  Vec       pa; /* the last accepted trial's pressure (the step's own at first) */
+
+  PetscFunctionBegin;
+  *none = PETSC_FALSE;
+  if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &dgamma));
+  if (!(dgamma > 0)) dgamma = 1.0; /* a non-adhesive stage: the law's scales only */
+  zone = s->crops.zone_gap(s->crops.data, dgamma);
+  PetscCall(VecDuplicate(s->p, &pa));
+  PetscCall(VecCopy(s->p, pa));
+  xa = d = s->d;
+  PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart)); /* the step's own state at d0 */
+  PetscCall(VecCopy(s->p, pa));
+  tol   = 10.0 * s->minimize_rtol * PetscMax(PetscMax(PetscAbsReal(T), PetscAbsReal(F0)), s->crops.peak(s->crops.data, dgamma) * s->grid->hx * s->grid->hy);
+  dir   = T > F0 ? 1.0 : -1.0; /* more force: press on (d up); less: pull (d down) */
+  ra    = dir * (T - F0);      /* the shortfall, > 0 short of T */
+  found = (PetscBool)(PetscAbsReal(ra) <= tol);
+  hmax  = ADH_FORCE_MOVE * zone;
+  h     = hmax;
+  for (PetscInt k = 0; !found && k < 100000; k++) {
+    const PetscReal xb = xa + dir * h;
+    PetscReal       Fb, rb;
+    if (h < 1e-9 * zone) { /* no move gains: the branch's extremum falls short of T */
+      *none = PETSC_TRUE;
+      break;
+    }
+    PetscCall(TrialAt(s, pa, xb, zone, &Fb, &apart));
+    rb = dir * (T - Fb);
+    if (!apart && PetscAbsReal(rb) <= tol) {
+      d     = xb;
+      found = PETSC_TRUE;
+    } else if (!apart && rb < 0) { /* past T: regula falsi in (xa, xb), each trial from xa's state */
+      PetscReal a = xa, fa = ra, b = xb, fb = rb;
+      PetscInt  kept = 0;
+      for (PetscInt j = 0; j < 200 && !found; j++) {
+        const PetscReal c = (a * fb - b * fa) / (fb - fa);
+        PetscReal       Fc, rc;
+        PetscCall(TrialAt(s, pa, c, zone, &Fc, &apart));
+        rc = apart ? -PetscAbsReal(fb) : dir * (T - Fc); /* apart inside: as past T */
+        if ((!apart && PetscAbsReal(rc) <= tol) || PetscAbsReal(b - a) < 1e-12 * zone) {
+          d     = c;
+          found = PETSC_TRUE;
+        } else if (rc > 0) {
+          a  = c;
+          fa = rc;
+          if (kept == 1) fb *= 0.5;
+          kept = 1;
+        } else {
+          b  = c;
+          fb = rc;
+          if (kept == -1) fa *= 0.5;
+          kept = -1;
+        }
+      }
+      PetscCheck(found, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: the trials' forces do not converge to %g", (double)T);
+    } else if (!apart) { /* short still: on along the branch, by the secant where it gains, capped */
+      const PetscReal gain = (ra - rb) / h;
+      xa = d = xb;
+      ra = rb;
+      PetscCall(VecCopy(s->p, pa));
+      h = gain > 0 ? PetscMin(1.5 * rb / gain, 5.0 * hmax) : hmax; /* where it turns back, the short moves */
+    } else h *= 0.5; /* apart: a shorter move from the same state, towards where the bodies let go */
+  }
+  PetscCheck(found || *none, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: no d found that carries the force %g", (double)T);
+  if (*none) PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart)); /* the last state on the branch (the control goes back to the step's) */
+  else if (s->d != d) PetscCall(TrialAt(s, pa, d, zone, &F0, &apart)); /* the accepted state is the current one */
+  PetscCall(VecDestroy(&pa));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBool *none)
+{
+  const PetscBool force = AdhSolverControlsForce_Private(s);
+
+  PetscFunctionBegin;
+  if (force && s->boundary == ADH_BOUNDARY_FREE) PetscCall(MinimizeForceFree(s, target, none));
+  else PetscCall(MinimizeAt(s, force, target, none));
+  s->law_apart = *none;
+  PetscFunctionReturn(0);
+}

@@ -251,6 +251,14 @@ static PetscErrorCode Equilibrate(AdhSolver s, Force *f, PetscReal F, PetscBool 
   PetscFunctionReturn(0);
 }
 
+/* Whether the state after an equilibration carries the force: a set of contact points, or under a
+   cohesive law any state its minimisation found (one attached through the law alone, with no
+   point at the wall, carries it too). */
+static PetscBool Carried(AdhSolver s)
+{
+  return s->crops.law ? (PetscBool)!s->law_apart : (PetscBool)(s->npoints > 0);
+}
+
 /* Force control: the equilibrium set carrying F. When none does (the set empties), the contact
    has come off: bisect between the previous state's force and F from the previous state, and end
    on the state carrying the largest tension (within -adh_pulloff_rtol), marked pulled off. */
@@ -277,7 +285,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   /* without adhesion the state carrying F > 0 is unique: a predictor may guess its set */
   if (s->pops.predict && F > 0 && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->pops.predict(s, PETSC_TRUE, F));
   PetscCall(Equilibrate(s, f, F, unique));
-  if (s->npoints) PetscFunctionReturn(0);
+  if (Carried(s)) PetscFunctionReturn(0);
   PetscCall(RestoreState(s, f, &f->previous));
   /* relative to the step's forces, so that a pull-off force of 0 (no adhesion) ends too */
   tol = f->pulloff_rtol * PetscMax(PetscAbsReal(carried), PetscAbsReal(F));
@@ -286,7 +294,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
     /* each trial is a step of its own from the saved state */
     PetscCall(AdhSolverBeginSetUpdates_Private(s));
     PetscCall(Equilibrate(s, f, mid, PETSC_FALSE));
-    if (s->npoints) {
+    if (Carried(s)) {
       carried = mid;
       PetscCall(SaveState(s, f, &f->previous));
     } else {

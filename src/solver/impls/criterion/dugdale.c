@@ -37,8 +37,8 @@
    With -adh_dugdale_route minimize each state is a minimum of the total energy (the elastic energy plus the smoothed
    law's potential, the wall g >= 0 as a bound) reached from the last, as for `ADHCRITERIONEXPONENTIAL`; its cost does
    not blow up as the zone narrows, and the smoothing makes the pull-off converge faster with the grid (Maugis' sphere
-   at lambda 1: within 0.3% on 64^2 and 0.1% on 128^2, where the fixed point is 6% and 3% off). Under force control
-   it needs -adh_boundary periodic; the -adh_minimize_ options apply.
+   at lambda 1: within 0.3% on 64^2 and 0.1% on 128^2, where the fixed point is 6% and 3% off). Both controls on both
+   boundaries; the -adh_minimize_ options apply.
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
 M*/
@@ -206,7 +206,6 @@ static PetscErrorCode SetUp_Dugdale(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCheck(dd->s0 > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_criterion dugdale needs the cohesive stress: give -adh_dugdale_stress S (> 0; the range is dgamma/S)");
-  PetscCheck(dd->route != ADH_DUGDALE_MINIMIZE || s->boundary == ADH_BOUNDARY_PERIODIC || !AdhSolverControlsForce_Private(s), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_dugdale_route minimize with -adh_control force needs -adh_boundary periodic: on the free boundary its steps are under displacement control (or use -adh_dugdale_route fixed-point)");
   PetscCheck(s->sigma_fixed == 0, s->comm, PETSC_ERR_ARG_INCOMP, "-adh_critical_stress does not apply to -adh_criterion dugdale, whose cohesive stress is -adh_dugdale_stress");
   PetscCall(Begin_Dugdale(s));
   /* their marks zero the pressure off the set, and the local solves leave out the zone's load */

@@ -25,7 +25,8 @@
    tension follows it at a common range.
 
    Both boundaries: on the free boundary the minimisation runs on the zero-padded grid (the padding's displacements
-   free, under displacement control); force control needs -adh_boundary periodic. -adh_critical_stress, -adh_attach,
+   free); force control there finds the d that carries the force by minimisations at fixed d along the branch, a
+   few to some tens a state. -adh_critical_stress, -adh_attach,
    -adh_cascade_apart and -adh_cascade_local do not apply: the hard wall is the bound of the minimisation.
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONDUGDALE`, `ADHCRITERIONCRACKCLOSURE`

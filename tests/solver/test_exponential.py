@@ -152,6 +152,9 @@ def test_force_control_on_the_free_boundary():
     F = -float(np.min(force["force"]))
     say(f"\nexponential, free boundary, force control: pull-off {F:.6g} against {largest:.6g} under displacement control")
     assert force["pulled_off"][-1] == 1 and abs(F / largest - 1) < 2e-3
+    carried = force["pulled_off"] == 0  # every other state carries its step's force
+    targets = np.linspace(0.005, -0.02, 21)[: len(force["d"])]
+    assert np.max(np.abs(force["force"][carried] - targets[carried])) < 1e-6 * largest
     back = slice(int(np.argmax(disp["d"])), None)  # the unloading leg, d falling
     dd, fd = disp["d"][back][::-1], disp["force"][back][::-1]
     unload = np.arange(len(force["d"])) > int(np.argmax(force["force"]))

@@ -38,6 +38,7 @@ struct _n_AdhMinimizer {
   Vec      work, pold; /* scratch, and the elastic pressure before a step */
   Vec      u, rpold;   /* the elastic displacement v - b, and the previous projected gradient (Polak-Ribiere) */
   Vec      w, wr;       /* the preconditioner's scaling where the law stiffens the energy, and w r (NULL until needed) */
+  Vec      pforce;      /* free boundary, force control: the last accepted trial's pressure (NULL until needed) */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
@@ -62,13 +63,14 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   PetscFunctionReturn(0);
 }
 
-/* The bytes a grid point costs the minimisation: its fourteen vectors (the two of the
-   preconditioner's scaling made only for a law that stiffens the energy, counted always) and two
+/* The bytes a grid point costs the minimisation: its fifteen vectors (the two of the
+   preconditioner's scaling, made only for a law that stiffens the energy, and the free boundary's
+   force control's one, counted always) and two
    bytes of marks per variable, a variable a point on a periodic cell and four on the free
    boundary's padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (14.0 * sizeof(PetscScalar) + 2.0);
+  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (15.0 * sizeof(PetscScalar) + 2.0);
 }
 
 /* Its lines in the law's -adh_view. */
@@ -109,6 +111,7 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->rpold));
   PetscCall(VecDestroy(&m->w));
   PetscCall(VecDestroy(&m->wr));
+  PetscCall(VecDestroy(&m->pforce));
   PetscCall(PetscFree(m->active));
   PetscCall(PetscFree(s->minimizer));
   PetscFunctionReturn(0);
@@ -784,34 +787,48 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
    over the branch's largest tension (the force is flat there, its error of the second order in
    the move). */
 #define ADH_FORCE_MOVE 0.02
+/* The bodies let go within this share of the zone gap between the last state on the branch and
+   the first trial that came apart: the pull-off's d to that, its force far finer than the
+   control's bisection asks. */
+#define ADH_FORCE_APART 1e-6
 
 /* Force control on the free boundary, whose padded minimisation has no mean mode to carry a force:
    the d on the step's branch at which the minimum carries the force T. From the step's state (d0,
    F0) it marches towards T, each trial a minimisation at a fixed d from the last one accepted
    (so the branch is followed as by displacement steps), by secant moves of at most
    ADH_FORCE_MOVE zone gaps. Past T, regula falsi (Illinois) between the last two, each trial from
-   the nearer. Where the branch's force turns back before T (a few points letting go at once), the
-   march goes on through it: under the force the state snaps through to the next one that carries
-   it. A move whose trial comes apart is halved; when it has shrunk to nothing the bodies let go
-   before T is reached: none, and the control bisects the force for the pull-off, the largest
-   tension the branch carries before the bodies come apart. */
+   the last accepted state. Where the branch's force turns back before T (a few points letting go
+   at once), the march goes on through it: under the force the state snaps through to the next
+   one that carries it. A trial that comes apart bounds the march: the moves halve towards it, and
+   when the last state on the branch and the first apart are within ADH_FORCE_APART zone gaps the
+   bodies let go before T is reached: none, and the control bisects the force for the pull-off,
+   the largest tension the branch carries before the bodies come apart. */
 static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *none)
 {
-  PetscReal dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d;
-  PetscBool apart, found;
-  Vec       pa; /* the last accepted trial's pressure (the step's own at first) */
+  AdhMinimizer m;
+  PetscReal    dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d, xapart = PETSC_MAX_REAL;
+  PetscBool    apart, found;
+  Vec          pa; /* the last accepted trial's pressure (the step's own at first) */
 
   PetscFunctionBegin;
   *none = PETSC_FALSE;
   if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &dgamma));
-  if (!(dgamma > 0)) dgamma = 1.0; /* a non-adhesive stage: the law's scales only */
-  zone = s->crops.zone_gap(s->crops.data, dgamma);
-  PetscCall(VecDuplicate(s->p, &pa));
+  if (!s->adhesive) dgamma = 0.0;
+  if (!(dgamma > 0) && T < 0) { /* nothing holds the bodies under a tension */
+    *none = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  /* the scale of the moves: the law's zone gap, or without adhesion an element */
+  zone = dgamma > 0 ? s->crops.zone_gap(s->crops.data, dgamma) : PetscMin(s->grid->hx, s->grid->hy);
+  if (!s->minimizer) PetscCall(Create(s));
+  m = s->minimizer;
+  if (!m->pforce) PetscCall(VecDuplicate(s->p, &m->pforce));
+  pa = m->pforce;
   PetscCall(VecCopy(s->p, pa));
   xa = d = s->d;
   PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart)); /* the step's own state at d0 */
   PetscCall(VecCopy(s->p, pa));
-  tol   = 10.0 * s->minimize_rtol * PetscMax(PetscMax(PetscAbsReal(T), PetscAbsReal(F0)), s->crops.peak(s->crops.data, dgamma) * s->grid->hx * s->grid->hy);
+  tol   = 10.0 * s->minimize_rtol * PetscMax(PetscMax(PetscAbsReal(T), PetscAbsReal(F0)), dgamma > 0 ? s->crops.peak(s->crops.data, dgamma) * s->grid->hx * s->grid->hy : 0.0);
   dir   = T > F0 ? 1.0 : -1.0; /* more force: press on (d up); less: pull (d down) */
   ra    = dir * (T - F0);      /* the shortfall, > 0 short of T */
   found = (PetscBool)(PetscAbsReal(ra) <= tol);
@@ -820,10 +837,6 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   for (PetscInt k = 0; !found && k < 100000; k++) {
     const PetscReal xb = xa + dir * h;
     PetscReal       Fb, rb;
-    if (h < 1e-9 * zone) { /* no move gains: the branch's extremum falls short of T */
-      *none = PETSC_TRUE;
-      break;
-    }
     PetscCall(TrialAt(s, pa, xb, zone, &Fb, &apart));
     rb = dir * (T - Fb);
     if (!apart && PetscAbsReal(rb) <= tol) {
@@ -837,8 +850,12 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
         PetscReal       Fc, rc;
         PetscCall(TrialAt(s, pa, c, zone, &Fc, &apart));
         rc = apart ? -PetscAbsReal(fb) : dir * (T - Fc); /* apart inside: as past T */
-        if ((!apart && PetscAbsReal(rc) <= tol) || PetscAbsReal(b - a) < 1e-12 * zone) {
+        if (!apart && (PetscAbsReal(rc) <= tol || PetscAbsReal(b - a) < 1e-12 * zone)) {
           d     = c;
+          found = PETSC_TRUE;
+        } else if (apart && PetscAbsReal(b - a) < 1e-12 * zone) { /* T at the branch's very end: its short side */
+          PetscCall(TrialAt(s, pa, a, zone, &Fc, &apart));
+          d     = a;
           found = PETSC_TRUE;
         } else if (rc > 0) {
           a  = c;
@@ -858,13 +875,19 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
       xa = d = xb;
       ra = rb;
       PetscCall(VecCopy(s->p, pa));
-      h = gain > 0 ? PetscMin(1.5 * rb / gain, 5.0 * hmax) : hmax; /* where it turns back, the short moves */
-    } else h *= 0.5; /* apart: a shorter move from the same state, towards where the bodies let go */
+      h = gain > 0 ? PetscMax(PetscMin(1.5 * rb / gain, 5.0 * hmax), 1e-3 * hmax) : hmax; /* where it turns back, the short moves */
+      if (xapart < PETSC_MAX_REAL) h = PetscMin(h, 0.5 * PetscAbsReal(xapart - xa)); /* towards where the bodies let go */
+    } else { /* apart: the march's bound; halfway to it from the same state */
+      xapart = xb;
+      h *= 0.5;
+    }
+    if (!found && xapart < PETSC_MAX_REAL && PetscAbsReal(xapart - xa) < ADH_FORCE_APART * zone) {
+      *none = PETSC_TRUE; /* the bodies let go between the last state on the branch and xapart */
+      break;
+    }
   }
   PetscCheck(found || *none, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: no d found that carries the force %g", (double)T);
-  if (*none) PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart)); /* the last state on the branch (the control goes back to the step's) */
-  else if (s->d != d) PetscCall(TrialAt(s, pa, d, zone, &F0, &apart)); /* the accepted state is the current one */
-  PetscCall(VecDestroy(&pa));
+  /* found: the last trial is the accepted state; none: the control goes back to the step's */
   PetscFunctionReturn(0);
 }
 

@@ -259,6 +259,23 @@ static PetscBool Carried(AdhSolver s)
   return s->crops.law ? (PetscBool)!s->law_apart : (PetscBool)(s->npoints > 0);
 }
 
+/* With no point at the wall, whether a cohesive law still holds the bodies: a gap within its
+   zone (a state attached through the law alone, which the next step goes on from). */
+static PetscErrorCode LawHolds(AdhSolver s, PetscBool *holds)
+{
+  PetscReal dgamma = s->gamma, gmin;
+
+  PetscFunctionBegin;
+  *holds = PETSC_FALSE;
+  if (!s->crops.law || !s->crops.zone_gap || !s->adhesive || s->pulled_off) PetscFunctionReturn(0);
+  if (s->gamma_field) PetscCall(VecMax(s->gamma_field, NULL, &dgamma));
+  if (!(dgamma > 0)) PetscFunctionReturn(0);
+  PetscCall(AdhSolverComputeGap_Private(s));
+  PetscCall(VecMin(s->g, NULL, &gmin));
+  *holds = (PetscBool)(gmin <= s->crops.zone_gap(s->crops.data, dgamma));
+  PetscFunctionReturn(0);
+}
+
 /* Force control: the equilibrium set carrying F. When none does (the set empties), the contact
    has come off: bisect between the previous state's force and F from the previous state, and end
    on the state carrying the largest tension (within -adh_pulloff_rtol), marked pulled off. */
@@ -269,9 +286,11 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   const PetscBool unique = (PetscBool)(s->pops.predict && !AdhSolverIsAdhesive_Private(s));
   PetscScalar     sum;
   PetscReal       carried, failed = F, tol;
+  PetscBool       holds = PETSC_FALSE;
 
   PetscFunctionBegin;
-  if (!s->npoints) {
+  if (!s->npoints) PetscCall(LawHolds(s, &holds));
+  if (!s->npoints && !holds) {
     if (F <= 0) {
       /* off the surface, and nothing pulls it back: no pressure, the undeformed gap */
       PetscCall(AdhSolverComputeGap_Private(s));

@@ -95,6 +95,9 @@ typedef struct {
      law's largest attraction, both for a point with work of adhesion dgamma */
   PetscReal (*zone_gap)(const void *data, PetscReal dgamma);
   PetscReal (*peak)(const void *data, PetscReal dgamma);
+  /* with a law whose second derivative can be positive (it stiffens the energy near the wall, as
+     the 9-3 law does): the minimisation's preconditioner is scaled by it (else never looked at) */
+  PetscBool stiffens;
   /* Optional, a finite-range criterion's: its Tabor parameter for a summit of radius R with work
      of adhesion dgamma, and the parameter's name ("Tabor's mu", "Maugis' lambda") */
   PetscReal (*tabor)(AdhSolver, PetscReal R, PetscReal dgamma);
@@ -217,6 +220,7 @@ struct _p_AdhSolver {
   PetscBool       minimize_pc;      /* -adh_minimize_pc fourier: the compliance preconditions it */
   PetscBool       minimize_monitor; /* -adh_minimize_monitor: a line per iteration */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
+  PetscReal       rms_slope, rms_curvature, full_contact_energy; /* a rough profile's, for the two estimates (roughness.c, made once a profile; 0: none) */
   PetscReal       asperity_ac;      /* estimated JKR contact radius of the smallest asperities over h (resolution.c; 0: none) */
   PetscReal       asperity_tabor;   /* a finite-range criterion's Tabor parameter of those asperities (0: none) */
   AdhStickiness   stickiness;       /* the set-up estimate of a rough surface's stickiness (stickiness.c) */
@@ -440,7 +444,7 @@ PETSC_INTERN PetscErrorCode AdhSolverCheckBelowFullContact_Private(AdhSolver, Pe
 PETSC_INTERN PetscErrorCode AdhStatisticsCompute_Private(AdhSolver, AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver);
-PETSC_INTERN PetscErrorCode AdhSolverRoughness_Private(AdhSolver, PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode AdhSolverEstimateRoughness_Private(AdhSolver);
 PETSC_INTERN PetscBool      AdhSolverResolves_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscInt       AdhSolverUnresolved_Private(AdhSolver, const AdhState *);
 PETSC_INTERN PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver, const AdhState *, PetscInt, char[], size_t);

@@ -162,6 +162,23 @@ def test_force_control_on_the_free_boundary():
         assert abs(np.interp(d, dd, fd) - f) < 1e-3 * largest, (d, f)
 
 
+def test_force_control_through_a_jump_into_full_contact_on_the_free_boundary():
+    """A sticky rough map under force control on the free boundary jumps into full contact between
+    its first two states; every state carries its force (a search that skipped the minimisation
+    of the step's first state, a first touch at p = 0, took the jump's edge for the state: -24
+    where 5 was asked)."""
+    serial_only()
+    targets = np.linspace(10.0, -10.0, 5)
+    with adhbem.Solver(n=64, size=64.0, boundary="free", indenter="rough", rms_slope=0.1, rolloff_wavelength=32.0,
+                       cutoff_wavelength=8.0, gamma=0.3, criterion="exponential", exponential_range=0.3, control="force",
+                       path=[10.0, -10.0], steps=4, progress=False) as s:
+        c = s.solve_path()
+    say(f"\nexponential, sticky map, force control: forces {np.round(c['force'], 6).tolist()}, points {c['contact_points'].tolist()}")
+    assert len(c["force"]) == 5 and not c["pulled_off"].any()
+    assert np.max(np.abs(c["force"] - targets)) < 1e-6 * 10.0
+    assert c["contact_points"][-1] == 64 * 64 > c["contact_points"][0]
+
+
 def test_fft_pairs_a_state_stay_few():
     """The preconditioned minimisation takes a few tens of FFT pairs a state under displacement
     control (the unpreconditioned one several times more), on 64^2 as on 32^2."""

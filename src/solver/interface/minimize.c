@@ -63,14 +63,14 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   PetscFunctionReturn(0);
 }
 
-/* The bytes a grid point costs the minimisation: its fifteen vectors (the two of the
-   preconditioner's scaling, made only for a law that stiffens the energy, and the free boundary's
-   force control's one, counted always) and two
-   bytes of marks per variable, a variable a point on a periodic cell and four on the free
-   boundary's padded grid. */
+/* The bytes a grid point costs the minimisation: its twelve vectors, two more for the
+   preconditioner's scaling of a law that stiffens the energy and one for force control on the free
+   boundary, and two bytes of marks per variable, a variable a point on a periodic cell and four on
+   the free boundary's padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (15.0 * sizeof(PetscScalar) + 2.0);
+  const PetscReal vectors = 12.0 + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 1.0 : 0.0);
+  return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (vectors * sizeof(PetscScalar) + 2.0);
 }
 
 /* Its lines in the law's -adh_view. */
@@ -215,8 +215,8 @@ static inline void Law(AdhSolver, const PetscScalar *, PetscInt, PetscReal, Pets
 /* Where the law stiffens the energy (phi'' > 0: a Lennard-Jones law near the wall) far beyond an
    element's elastic stiffness 1/K00, the compliance alone preconditions badly: the scaling
    w = 1/sqrt(1 + K00 phi''+) on each side, W K W, keeps the preconditioner symmetric and brings
-   its diagonal near the inverse of the Hessian's (as far as the stiffness's diagonal is 1/K00). Returns whether any w differs from 1 (a law that
-   never stiffens, as the exponential, keeps K itself). */
+   its diagonal near the inverse of the Hessian's (as far as the stiffness's diagonal is 1/K00).
+   Returns whether any w differs from 1; only for a law that says it stiffens (crops.stiffens). */
 static PetscErrorCode CurvatureScaling(AdhSolver s, const PetscScalar *gamma, PetscBool *scaled)
 {
   AdhMinimizer       m = s->minimizer;
@@ -225,6 +225,8 @@ static PetscErrorCode CurvatureScaling(AdhSolver s, const PetscScalar *gamma, Pe
   PetscInt           any = 0;
 
   PetscFunctionBegin;
+  *scaled = PETSC_FALSE;
+  if (!s->crops.stiffens) PetscFunctionReturn(0); /* the exponential, the smoothed Dugdale law: K itself */
   if (!m->w) {
     PetscCall(VecDuplicate(m->v, &m->w));
     PetscCall(VecDuplicate(m->v, &m->wr));
@@ -826,7 +828,8 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   pa = m->pforce;
   PetscCall(VecCopy(s->p, pa));
   xa = d = s->d;
-  PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart)); /* the step's own state at d0 */
+  /* the step's state at d0, minimised: it need not be a minimum (a first touch starts from p = 0) */
+  PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart));
   PetscCall(VecCopy(s->p, pa));
   tol   = 10.0 * s->minimize_rtol * PetscMax(PetscMax(PetscAbsReal(T), PetscAbsReal(F0)), dgamma > 0 ? s->crops.peak(s->crops.data, dgamma) * s->grid->hx * s->grid->hy : 0.0);
   dir   = T > F0 ? 1.0 : -1.0; /* more force: press on (d up); less: pull (d down) */
@@ -845,19 +848,17 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
     } else if (!apart && rb < 0) { /* past T: regula falsi in (xa, xb), each trial from xa's state */
       PetscReal a = xa, fa = ra, b = xb, fb = rb;
       PetscInt  kept = 0;
-      for (PetscInt j = 0; j < 200 && !found; j++) {
+      PetscBool jump = PETSC_FALSE;
+      for (PetscInt j = 0; j < 200 && !found && !jump; j++) {
         const PetscReal c = (a * fb - b * fa) / (fb - fa);
         PetscReal       Fc, rc;
         PetscCall(TrialAt(s, pa, c, zone, &Fc, &apart));
         rc = apart ? -PetscAbsReal(fb) : dir * (T - Fc); /* apart inside: as past T */
-        if (!apart && (PetscAbsReal(rc) <= tol || PetscAbsReal(b - a) < 1e-12 * zone)) {
+        if (!apart && PetscAbsReal(rc) <= tol) {
           d     = c;
           found = PETSC_TRUE;
-        } else if (apart && PetscAbsReal(b - a) < 1e-12 * zone) { /* T at the branch's very end: its short side */
-          PetscCall(TrialAt(s, pa, a, zone, &Fc, &apart));
-          d     = a;
-          found = PETSC_TRUE;
-        } else if (rc > 0) {
+        } else if (PetscAbsReal(b - a) < 1e-12 * zone) jump = PETSC_TRUE; /* the force jumps across T here */
+        else if (rc > 0) {
           a  = c;
           fa = rc;
           if (kept == 1) fb *= 0.5;
@@ -868,6 +869,21 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
           if (kept == -1) fa *= 0.5;
           kept = -1;
         }
+      }
+      if (jump) { /* no state on this branch carries T: it snaps through to the state past the jump */
+        PetscReal Fj;
+        PetscCall(TrialAt(s, pa, b, zone, &Fj, &apart));
+        if (apart) { /* past the jump the bodies are apart: they let go before T */
+          *none = PETSC_TRUE;
+          break;
+        }
+        PetscCall(VecCopy(s->p, pa)); /* and marches back to T on the new branch */
+        xa = d = b;
+        dir = -dir;
+        ra  = dir * (T - Fj);
+        h   = hmax;
+        xapart = PETSC_MAX_REAL;
+        continue;
       }
       PetscCheck(found, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: the trials' forces do not converge to %g", (double)T);
     } else if (!apart) { /* short still: on along the branch, by the secant where it gains, capped */

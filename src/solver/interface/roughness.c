@@ -101,11 +101,13 @@ static PetscErrorCode RemoveMeanPlane(AdhSolver s, Vec b)
   PetscFunctionReturn(0);
 }
 
-/* The three for a rough surface, a topography file or an array (0 for any other profile, and for
-   a free-boundary map of fewer than 3 x 3 points). */
-PetscErrorCode AdhSolverRoughness_Private(AdhSolver s, PetscReal *slope, PetscReal *curvature, PetscReal *energy)
+/* The three for a rough surface, a topography file or an array, into the solver (0 for any other
+   profile, and for a free-boundary map of fewer than 3 x 3 points); once a profile, the two
+   estimates read them. */
+PetscErrorCode AdhSolverEstimateRoughness_Private(AdhSolver s)
 {
-  const AdhIndenterType type = s->indenter.type;
+  PetscReal            *slope = &s->rms_slope, *curvature = &s->rms_curvature, *energy = &s->full_contact_energy;
+  const AdhIndenterType type  = s->indenter.type;
   const PetscReal       N    = (PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny;
   Vec                   b, a, c;
   PetscScalar           dot;

@@ -137,6 +137,7 @@ PetscErrorCode AdhSolverProfileChanged_Private(AdhSolver s)
   PetscCall(VecSum(s->h, &sum));
   s->mean_h = PetscRealPart(sum) / ((PetscReal)s->grid->Nx * (PetscReal)s->grid->Ny);
   s->profile_version++;
+  PetscCall(AdhSolverEstimateRoughness_Private(s)); /* once a profile: the two estimates read it */
   PetscCall(AdhSolverEstimateResolution_Private(s));
   PetscCall(AdhSolverEstimateStickiness_Private(s));
   PetscCall(AdhSolverSetLocalWidth_Private(s)); /* -adh_cascade_local's window, from that estimate */

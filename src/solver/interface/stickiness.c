@@ -39,7 +39,9 @@ PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver s)
     dgamma = PetscRealPart(sum) / N;
   }
   if (!(dgamma > 0)) PetscFunctionReturn(0);
-  PetscCall(AdhSolverRoughness_Private(s, &st->rms_slope, &st->rms_curvature, &st->full_contact_energy));
+  st->rms_slope           = s->rms_slope; /* the profile's (roughness.c) */
+  st->rms_curvature       = s->rms_curvature;
+  st->full_contact_energy = s->full_contact_energy;
   st->work_of_adhesion = dgamma;
   if (!(st->full_contact_energy > 0) || !(st->rms_curvature > 0)) { /* a flat cell */
     PetscCall(PetscMemzero(st, sizeof(*st)));

@@ -153,6 +153,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_LJ93(AdhSolver s)
   s->crops.law                 = Law_LJ93;
   s->crops.zone_gap            = ZoneGap_LJ93;
   s->crops.peak                = Peak_LJ93;
+  s->crops.stiffens            = PETSC_TRUE; /* phi'' > 0 for g < 0.165 z0 */
   s->crops.tabor               = Tabor_LJ93;
   s->crops.tabor_name          = "Tabor's mu";
   s->crops.range               = Range_LJ93;

@@ -145,6 +145,11 @@ PETSC_EXTERN PetscErrorCode MatAdhComplianceGetMultCount(Mat, PetscInt *);
 /* The periodic stiffness E*|q|/2 on the grid (the inverse compliance symbol), used to
    precondition CG on the contact set. */
 PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid, PetscReal Estar, Mat *);
+/* A periodic body's compliance symbol: the surface displacement of a unit pressure wave of wave
+   number q > 0 (the half-space's is 2/(E* q)); and its compliance (stiffness false) or stiffness
+   1/C on the grid. */
+typedef PetscReal (*AdhPeriodicSymbol)(void *ctx, PetscReal q);
+PETSC_EXTERN PetscErrorCode MatCreateAdhPeriodicSymbolOperator(AdhGrid, AdhPeriodicSymbol, void *ctx, PetscBool stiffness, Mat *);
 
 /* ---- solver/: the adhesive contact solver ---- */
 
@@ -204,6 +209,12 @@ PETSC_EXTERN PetscErrorCode AdhSolverSetUp(AdhSolver);
 /* ---- solver/impls/: the registered types: load control, detachment criterion, contact-set predictor ---- */
 /* Load control, a registered type: "displacement" (the path holds indentations d) or "force"
    (the path holds forces F; each step finds the d at which the equilibrium set carries F). */
+typedef const char *AdhElasticType;
+#define ADHELASTICHALFSPACE "halfspace"
+#define ADHELASTICLAYER     "layer"
+PETSC_EXTERN PetscErrorCode AdhElasticRegister(const char[], PetscErrorCode (*)(AdhSolver));
+PETSC_EXTERN PetscErrorCode AdhSolverSetElasticType(AdhSolver, AdhElasticType);
+PETSC_EXTERN PetscErrorCode AdhSolverGetElasticType(AdhSolver, AdhElasticType *);
 typedef const char *AdhControlType;
 #define ADHCONTROLDISPLACEMENT "displacement"
 #define ADHCONTROLFORCE        "force"

@@ -1,5 +1,5 @@
 /* The reduced modulus E* of two elastic bodies, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2. */
-#include "adhbem.h"
+#include "geometry/material.h"
 #include "sys/sysimpl.h"
 
 static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, const char *nuname, PetscReal nu)
@@ -38,19 +38,21 @@ static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, c
 
 .seealso: `MatCreateAdhCompliance()`, `AdhSolverSetFromOptions()`
 @*/
-PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[], PetscReal *Estar)
+/* The solids' constants into *m (its Estar on entry kept when no option is given). */
+PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm comm, const char prefix[], AdhMaterial *m)
 {
-  PetscReal E1 = 1.0, nu1 = 0.0, E2 = (PetscReal)INFINITY, nu2 = 0.0, Es = *Estar;
+  PetscReal E1 = 1.0, nu1 = 0.0, E2 = (PetscReal)INFINITY, nu2 = 0.0, Es = m->Estar;
   PetscBool setEs, setE1, setE2, setnu1, setnu2;
 
   PetscFunctionBegin;
   PetscOptionsBegin(comm, prefix, "adhbem material", "AdhSolver");
   PetscCall(AdhOptionsReal("-adh_E_star", "Reduced modulus E*", "", Es, &Es, &setEs));
-  PetscCall(AdhOptionsReal("-adh_E1", "Young's modulus of body 1 (instead of -adh_E_star)", "", E1, &E1, &setE1));
+  PetscCall(AdhOptionsReal("-adh_E1", "Young's modulus of body 1, the substrate or layer (instead of -adh_E_star)", "", E1, &E1, &setE1));
   PetscCall(AdhOptionsReal("-adh_nu1", "Poisson ratio of body 1", "", nu1, &nu1, &setnu1));
-  PetscCall(AdhOptionsReal("-adh_E2", "Young's modulus of body 2 (default inf: rigid)", "", E2, &E2, &setE2));
+  PetscCall(AdhOptionsReal("-adh_E2", "Young's modulus of body 2, the indenter (default inf: rigid)", "", E2, &E2, &setE2));
   PetscCall(AdhOptionsReal("-adh_nu2", "Poisson ratio of body 2", "", nu2, &nu2, &setnu2));
   PetscOptionsEnd();
+  m->solids = PETSC_FALSE;
   if (setE1 || setE2 || setnu1 || setnu2) {
     PetscReal compliance = 0.0;
     PetscCheck(!setEs, comm, PETSC_ERR_ARG_INCOMP, "-adh_E_star cannot be combined with -adh_E1/-adh_nu1/-adh_E2/-adh_nu2");
@@ -61,9 +63,23 @@ PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[
       PetscCall(CheckBody(comm, "-adh_E2", E2, "-adh_nu2", nu2));
       compliance += (1.0 - nu2 * nu2) / E2;
     } else PetscCheck(!setnu2, comm, PETSC_ERR_ARG_WRONG, "-adh_nu2 needs -adh_E2");
-    Es = 1.0 / compliance;
+    Es        = 1.0 / compliance;
+    m->solids = PETSC_TRUE;
+    m->E1 = E1; m->nu1 = nu1; m->E2 = E2; m->nu2 = nu2;
   }
   PetscCheck(Es > 0 && !PetscIsInfOrNanReal(Es), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Es);
-  *Estar = Es;
+  m->Estar = Es;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[], PetscReal *Estar)
+{
+  AdhMaterial m;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(&m, sizeof(m)));
+  m.Estar = *Estar;
+  PetscCall(AdhMaterialSetFromOptions_Private(comm, prefix, &m));
+  *Estar = m.Estar;
   PetscFunctionReturn(0);
 }

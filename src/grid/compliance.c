@@ -281,7 +281,9 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
   PetscCall(MatShellGetContext(K, &c));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
-    if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
+    if (c->kind == KIND_STIFFNESS && !c->Estar) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic stiffness 1/C(|q|) of an elastic body (adhbem preconditioner)\n"));
+    else if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
+    else if (!c->Estar) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic compliance C(|q|) of an elastic body (adhbem)\n"));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; %s r2c transform %td x %td\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->t->serial ? "FFTW (one rank)" : "FFTW-MPI (transposed spectrum)", c->t->n1, c->t->n0));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  diagonal %g, lambda_min bound %g (mean-free vectors: %g), multiplies so far %" PetscInt_FMT "\n", (double)c->diagonal, (double)c->lambda_min, (double)c->lambda_meanfree, c->nmult));
@@ -301,7 +303,9 @@ PetscErrorCode AdhComplianceMatDestroy_Private(Mat K)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, Mat *K)
+/* The operator of a kind: of a half-space of modulus Estar (symbol NULL), or of a periodic body's
+   compliance symbol. */
+static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicSymbol symbol, void *ctx, Kind kind, Mat *K)
 {
   const AdhBoundary boundary = kind == KIND_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
@@ -316,7 +320,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   PetscFunctionBegin;
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
-  PetscCheck(Estar > 0 && !PetscIsInfOrNanReal(Estar), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
+  PetscCheck(symbol || (Estar > 0 && !PetscIsInfOrNanReal(Estar)), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
   PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
   PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
   PetscCall(AdhOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
@@ -331,7 +335,9 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   c->comm     = grid->comm;
   c->kind     = kind;
   c->boundary = boundary;
-  c->Estar    = Estar;
+  c->Estar    = symbol ? 0.0 : Estar;
+  c->symbol     = symbol;
+  c->symbol_ctx = ctx;
   c->Nx = grid->Nx; c->Ny = grid->Ny; c->hx = grid->hx; c->hy = grid->hy; c->Lx = grid->Lx; c->Ly = grid->Ly;
   PetscCall(AdhGridGetTransform_Private(grid, boundary == ADH_BOUNDARY_FREE, effort, timelimit, layout, &c->t));
   c->nhalf = c->t->n0 / 2 + 1;
@@ -341,6 +347,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, Kind kind, M
   else if (kind == KIND_PERIODIC) PetscCall(AdhCompliancePeriodicMultiplier_Private(c));
   else PetscCall(AdhComplianceStiffnessMultiplier_Private(c));
   PetscCall(AdhComplianceRowStatistics_Private(c));
+  c->symbol     = NULL; /* the multiplier is made: the symbol's context need not outlive this call */
+  c->symbol_ctx = NULL;
 
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(MatCreateShell(c->comm, ym * c->Nx, ym * c->Nx, c->Nx * c->Ny, c->Nx * c->Ny, c, K));
@@ -408,7 +416,7 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
-  PetscCall(CreateFFTShell(grid, Estar, boundary == ADH_BOUNDARY_FREE ? KIND_FREE : KIND_PERIODIC, K));
+  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, boundary == ADH_BOUNDARY_FREE ? KIND_FREE : KIND_PERIODIC, K));
   PetscFunctionReturn(0);
 }
 
@@ -446,6 +454,48 @@ PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat 
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
-  PetscCall(CreateFFTShell(grid, Estar, KIND_STIFFNESS, S));
+  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, KIND_STIFFNESS, S));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+  MatCreateAdhPeriodicSymbolOperator - Creates the periodic compliance C(|q|) of an elastic body, or its stiffness 1/C(|q|),
+  from the body's compliance symbol: a `MATSHELL` applied with FFTW
+
+  Collective
+
+  Input Parameters:
++ grid      - the grid; it is set up here if it is not yet
+. symbol    - the body's compliance symbol: the surface displacement of a unit pressure wave of wave number q > 0, finite and
+              positive
+. ctx       - the symbol's context (needed during this call only)
+- stiffness - `PETSC_FALSE` for the compliance, `PETSC_TRUE` for the stiffness
+
+  Output Parameter:
+. K - the operator
+
+  Options Database Keys:
++ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
+. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
+- -adh_fftw_layout <auto,serial,transposed> - plans on one rank
+
+  Notes:
+  The operators of `MatCreateAdhCompliance()` (periodic boundary) and `MatCreateAdhPeriodicStiffness()` for a body other than
+  the half-space, such as a layer on a rigid base: the multiplier C(|q|) at q = 2 pi (kx/Lx, ky/Ly) with the mode q = 0 set to
+  zero (the mean displacement is left to the indentation), or 1/C(|q|) with the mean mode given the value at the lowest nonzero
+  wave number 2 pi/max(Lx, Ly). Everything else is as for the half-space's operators, which the MatAdhCompliance functions
+  accept them as. The symbol is evaluated once a mode, here.
+
+  Level: developer
+
+.seealso: `MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`, `AdhSolverSetElasticType()`
+@*/
+PetscErrorCode MatCreateAdhPeriodicSymbolOperator(AdhGrid grid, AdhPeriodicSymbol symbol, void *ctx, PetscBool stiffness, Mat *K)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidFunction(symbol, 2);
+  PetscValidPointer(K, 5);
+  PetscCall(CreateFFTShell(grid, 0.0, symbol, ctx, stiffness ? KIND_STIFFNESS : KIND_PERIODIC, K));
   PetscFunctionReturn(0);
 }

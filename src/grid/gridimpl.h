@@ -60,8 +60,10 @@ typedef struct {
   MPI_Comm     comm;
   Kind         kind;
   AdhBoundary  boundary;
-  PetscReal    Estar, hx, hy, Lx, Ly;
+  PetscReal    Estar, hx, hy, Lx, Ly;               /* Estar: a half-space's (0 with a symbol) */
   PetscInt     Nx, Ny;
+  AdhPeriodicSymbol symbol;                           /* a periodic body's compliance C(|q|) (NULL: the half-space's), */
+  void             *symbol_ctx;                       /* and its context: both used while the multiplier is made only */
   AdhTransform t;                                     /* the grid's transform of this size (shared) */
   double      *multiplier;                            /* real kernel spectrum / (n0 n1), in the spectrum's layout (MultIndex); even in ky, so only ky = 0 .. n0/2 are kept */
   ptrdiff_t    nhalf;                                 /* n0/2 + 1 */

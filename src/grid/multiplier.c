@@ -1,5 +1,6 @@
 /* The spectral multipliers of the operators: the free compliance (Love's coefficients, wrapped on
-   the zero-padded grid), the periodic compliance 2/(E*|q|), the periodic stiffness E*|q|/2, and
+   the zero-padded grid), the periodic compliance 2/(E*|q|) or a body's C(|q|), the periodic
+   stiffness E*|q|/2 or 1/C(|q|), and
    the diagonal and row norms of the circulant behind them. */
 #include "grid/gridimpl.h"
 
@@ -34,7 +35,8 @@ PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c)
   PetscFunctionReturn(0);
 }
 
-/* periodic: u_q = 2/(E* |q|) p_q with q = 2 pi (kx/Lx, ky/Ly); the mean (q = 0) is left to d. */
+/* periodic: u_q = 2/(E* |q|) p_q with q = 2 pi (kx/Lx, ky/Ly), or a body's symbol C(|q|); the
+   mean (q = 0) is left to d. */
 PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c)
 {
   ptrdiff_t a, k0;
@@ -47,8 +49,9 @@ PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c)
       const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[MultIndex(c, a, k0)] = (kx == 0 && ky == 0) ? 0.0 : 2.0 / (c->Estar * q) * scale;
-      if (kx || ky) lmin = PetscMin(lmin, 2.0 / (c->Estar * q));
+      const PetscReal C  = (kx == 0 && ky == 0) ? 0.0 : c->symbol ? c->symbol(c->symbol_ctx, q) : 2.0 / (c->Estar * q);
+      c->multiplier[MultIndex(c, a, k0)] = C * scale;
+      if (kx || ky) lmin = PetscMin(lmin, C);
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
@@ -85,12 +88,13 @@ PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c)
   PetscFunctionReturn(0);
 }
 
-/* Stiffness E*|q|/2, the inverse of the periodic compliance symbol; the mean mode gets the
-   value of the lowest nonzero wave number so the operator is positive definite. */
+/* Stiffness E*|q|/2, the inverse of the periodic compliance symbol (or 1/C(|q|) of a body's
+   symbol); the mean mode gets the value of the lowest nonzero wave number so the operator is
+   positive definite. */
 PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c)
 {
   ptrdiff_t a, k0;
-  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly);
+  PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly), lmin = PETSC_MAX_REAL;
 
   PetscFunctionBegin;
   for (a = 0; a < c->t->local_n1; a++) {
@@ -99,9 +103,15 @@ PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c)
       const ptrdiff_t ky = k0;
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
-      c->multiplier[MultIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
+      if (c->symbol) {
+        const PetscReal S = 1.0 / c->symbol(c->symbol_ctx, q);
+        c->multiplier[MultIndex(c, a, k0)] = S * scale;
+        lmin = PetscMin(lmin, S);
+      } else c->multiplier[MultIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
     }
   }
-  c->lambda_min = 0.5 * c->Estar * qmin;
+  /* a half-space's smallest is at qmin; a body's symbol need not fall with q everywhere */
+  if (c->symbol) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
+  c->lambda_min = c->symbol ? lmin : 0.5 * c->Estar * qmin;
   PetscFunctionReturn(0);
 }

@@ -129,7 +129,8 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   PetscCall(AdhH5WriteStringAttribute_Private(v, "start", AdhStarts[s->start]));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "control", s->control_type));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "criterion", s->criterion_type));
-  /* the types' own (crack-closure's radii, force control's pull-off tolerance): their views on the HDF5 viewer */
+  /* the types' own (the body's, crack-closure's radii, force control's pull-off tolerance): their views on the HDF5 viewer */
+  if (s->eops.base.view) PetscCall(s->eops.base.view(s, v));
   if (s->crops.base.view) PetscCall(s->crops.base.view(s, v));
   if (s->cops.base.view) PetscCall(s->cops.base.view(s, v));
   if (s->pops.base.view) PetscCall(s->pops.base.view(s, v));

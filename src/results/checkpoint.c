@@ -24,7 +24,7 @@ typedef struct {
 static const PetscReal AdhCascadeLocalBefore = 0.0;
 
 /* The options that shape the problem, with this run's values. */
-#define ADH_MAX_SHAPES (28 + 3 * ADH_MAX_TYPE_SHAPES)
+#define ADH_MAX_SHAPES (29 + ADH_NUM_KINDS * ADH_MAX_TYPE_SHAPES)
 static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, PetscInt *Ny, PetscReal *Lx, PetscReal *Ly)
 {
   PetscInt n = 0;
@@ -38,6 +38,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   shape[n++] = (Shape){"-adh_size (Ly)", PETSC_REAL, Ly};
   shape[n++] = (Shape){"-adh_boundary", PETSC_STRING, AdhBoundaries[s->boundary]};
   shape[n++] = (Shape){"-adh_indenter", PETSC_STRING, AdhIndenterTypes[s->indenter.type]};
+  shape[n++] = (Shape){"-adh_elastic", PETSC_STRING, s->elastic_type, ADHELASTICHALFSPACE};
   shape[n++] = (Shape){"-adh_E_star", PETSC_REAL, &s->Estar};
   shape[n++] = (Shape){"-adh_gamma", PETSC_REAL, &s->gamma};
   shape[n++] = (Shape){"-adh_control", PETSC_STRING, s->control_type};
@@ -53,13 +54,14 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
   /* the predictor's guess is certified, but where a state is not unique (rounding at a pressure of
      zero) it picks one: it runs only without adhesion */
   if (!(s->Sigma > 0 || s->Sigma_field)) shape[n++] = (Shape){"-adh_predictor", PETSC_STRING, s->predictor_type};
-  /* the types' own (crack-closure's radii, force control's pull-off tolerance) */
-  for (PetscInt k = 0; k < 3; k++) {
-    AdhTypeOps      *ops = k == 0 ? &s->crops.base : k == 1 ? &s->cops.base : &s->pops.base;
+  /* the types' own (a layer's thickness, crack-closure's radii, force control's pull-off tolerance) */
+  for (PetscInt k = 0; k < ADH_NUM_KINDS; k++) {
+    AdhTypeOps      *ops[ADH_NUM_KINDS];
     AdhShapingOption typed[ADH_MAX_TYPE_SHAPES];
     PetscInt         m = 0;
-    if (!ops->shape) continue;
-    PetscCallAbort(PETSC_COMM_SELF, ops->shape(s, &m, typed));
+    AdhSolverGetTypeOps_Private(s, ops, NULL, NULL);
+    if (!ops[k]->shape) continue;
+    PetscCallAbort(PETSC_COMM_SELF, ops[k]->shape(s, &m, typed));
     for (PetscInt j = 0; j < m; j++) shape[n++] = (Shape){typed[j].option, typed[j].type, typed[j].value, typed[j].absent};
   }
   return n;
@@ -69,10 +71,11 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
    group /state. */
 static PetscErrorCode TypesCheckpoint(AdhSolver s, PetscViewer v, PetscBool load)
 {
-  AdhTypeOps *types[3] = {&s->crops.base, &s->cops.base, &s->pops.base};
+  AdhTypeOps *types[ADH_NUM_KINDS];
 
   PetscFunctionBegin;
-  for (PetscInt k = 0; k < 3; k++)
+  AdhSolverGetTypeOps_Private(s, types, NULL, NULL);
+  for (PetscInt k = 0; k < ADH_NUM_KINDS; k++)
     if (types[k]->checkpoint) PetscCall(types[k]->checkpoint(s, v, load));
   PetscFunctionReturn(0);
 }

@@ -8,6 +8,7 @@
 #include "adhbem.h"
 #include "grid/gridimpl.h"
 #include "geometry/indenter.h"
+#include "geometry/material.h"
 #include "sys/sysimpl.h"
 
 /* A window of the plane for the bounding-box convolution (interface/box.c). */
@@ -25,9 +26,9 @@ typedef struct {
   const void   *value;
   const void   *absent; /* the value of a checkpoint written before the option existed (NULL: this run's) */
 } AdhShapingOption;
-#define ADH_MAX_TYPE_SHAPES 4
+#define ADH_MAX_TYPE_SHAPES 6
 
-/* What every type of the solver's three kinds (criterion, control, predictor) may do besides its
+/* What every type of the solver's four kinds (elastic body, criterion, control, predictor) may do besides its
    kind's work, as PETSc's types do (KSPSetFromOptions_CG, KSPView_CG). Each may be NULL. The
    type's data is its own (the kind's data pointer), made by its create function and freed by its
    destroy. */
@@ -43,6 +44,30 @@ typedef struct {
   /* the bytes it adds to AdhSolverEstimateMemory's model: per grid point and per rank */
   PetscErrorCode (*memory)(AdhSolver, PetscLogDouble *per_point, PetscLogDouble *per_rank);
 } AdhTypeOps;
+
+/* What an elastic body does (impls/elastic/): it makes the compliance (and the periodic stiffness
+   that preconditions the solves) and gives the solver every elastic constant it needs, so that no
+   half-space closed form is used outside the body's file. Its setup runs first of the solver's
+   set-up, before the operators are made, and fills in the constants below. */
+typedef struct {
+  AdhTypeOps base;
+  void      *data;
+  PetscBool  periodic_only; /* it has no free-boundary compliance (a layer: the periodic cell only) */
+  PetscBool  halfspace;     /* the closed forms of half-space contact (Hertz, JKR, Maugis) are its answers */
+  /* its compliance K on a grid for a boundary (the solver's, or a bounding-box window's, free) and
+     the periodic stiffness S of the grid (the Fourier preconditioner, and the energy of full contact) */
+  PetscErrorCode (*create_operators)(AdhSolver, AdhGrid, AdhBoundary, Mat *K, Mat *S);
+  /* the modulus 2/(q C(q)) a pressure wave of wave number q meets (the half-space: E* at every q),
+     for the estimates made before a run (resolution, Tabor's parameter, stickiness) */
+  PetscReal (*modulus)(AdhSolver, PetscReal q);
+  /* the paper's critical stress Sigma of a work of adhesion dgamma */
+  PetscReal (*critical_stress)(AdhSolver, PetscReal dgamma);
+  /* the constants, set by the body's setup: */
+  PetscReal self_compliance; /* K_00: an element's displacement at its centre under its own unit pressure */
+  PetscReal chi_per_area;    /* dgamma = chi_per_area Sigma^2: the element's self-energy over its area, per squared stress */
+  PetscReal stress_per_work; /* Sigma^2 = stress_per_work dgamma: the paper's critical stress (Sigma_field's scale) */
+  PetscReal mean_compliance; /* the compliance force control gives a periodic cell's mean mode, that of the longest wave */
+} AdhElasticOps;
 
 /* What a load control's path holds. */
 typedef enum { ADH_TARGET_INDENTATION, ADH_TARGET_FORCE } AdhTarget;
@@ -129,9 +154,15 @@ typedef struct {
   PetscErrorCode (*predict)(AdhSolver, PetscBool force, PetscReal target);
 } AdhPredictorOps;
 
-/* The registries of the three kinds (interface/criterion.c, control.c, predictor.c); the built-in
-   types are registered in impls/register.c, which the solver's package calls. */
-PETSC_INTERN AdhRegistry AdhCriteria, AdhControls, AdhPredictors;
+/* The registries of the four kinds (interface/elastic.c, criterion.c, control.c, predictor.c); the
+   built-in types are registered in impls/register.c, which the solver's package calls. */
+PETSC_INTERN AdhRegistry AdhElastics, AdhCriteria, AdhControls, AdhPredictors;
+/* The four kinds' ops of a solver, the body first, and their registries in the same order. */
+#define ADH_NUM_KINDS 4
+PETSC_INTERN void AdhSolverGetTypeOps_Private(AdhSolver, AdhTypeOps *ops[ADH_NUM_KINDS], AdhRegistry *regs[ADH_NUM_KINDS], const char *names[ADH_NUM_KINDS]);
+/* The modulus a JKR contact of work dgamma on a summit of radius R meets (the body's at the wave
+   number 1/a of its contact radius a; E* on a half-space), for the estimates made before a run. */
+PETSC_INTERN PetscReal AdhSolverSummitModulus_Private(AdhSolver, PetscReal R, PetscReal dgamma);
 /* Gives the solver the type `type` of a kind (nothing if it has it): the previous type's destroy,
    the kind's ops (whose first member is its AdhTypeOps) zeroed, the new type's create, and its
    set-up if the solver's is done (fixed: the kind cannot change after set-up); current holds the
@@ -197,6 +228,11 @@ struct _p_AdhSolver {
   Vec       off_load, off_work; /* a cohesive criterion's tractions off the set and their load (setsolve.c), made on first use */
   PetscReal mean_h;           /* mean of h: a periodic cell is in full contact at d = mean_h */
   PetscInt  profile_version;  /* counts the profiles h has held (AdhSolverProfileChanged_Private) */
+
+  /* elastic body (impls/elastic/) */
+  char          elastic_type[64];
+  AdhElasticOps eops;
+  AdhMaterial   material;       /* the solids' constants as given (E* is Estar above) */
 
   /* load control (impls/control/) */
   char          control_type[64];

@@ -1,8 +1,10 @@
-/* The solver's built-in types, registered in one place: detachment criteria, load controls and
-   contact-set predictors. A new type is a file (or a folder) in impls/<kind>/ whose create
+/* The solver's built-in types, registered in one place: elastic bodies, detachment criteria, load
+   controls and contact-set predictors. A new type is a file (or a folder) in impls/<kind>/ whose create
    function fills in the kind's ops (solverimpl.h), and its line here (docs/developers/code-map.md). */
 #include "solver/solverimpl.h"
 
+PETSC_INTERN PetscErrorCode AdhElasticCreate_HalfSpace(AdhSolver);
+PETSC_INTERN PetscErrorCode AdhElasticCreate_Layer(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_PohrtPopov(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_CrackClosure(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver);
@@ -17,6 +19,8 @@ PETSC_INTERN PetscErrorCode AdhPredictorCreate_PolonskyKeer(AdhSolver);
 PetscErrorCode AdhSolverRegisterAll_Private(void)
 {
   PetscFunctionBegin;
+  PetscCall(AdhElasticRegister(ADHELASTICHALFSPACE, AdhElasticCreate_HalfSpace));
+  PetscCall(AdhElasticRegister(ADHELASTICLAYER, AdhElasticCreate_Layer));
   PetscCall(AdhCriterionRegister(ADHCRITERIONPOHRTPOPOV, AdhCriterionCreate_PohrtPopov));
   PetscCall(AdhCriterionRegister(ADHCRITERIONCRACKCLOSURE, AdhCriterionCreate_CrackClosure));
   PetscCall(AdhCriterionRegister(ADHCRITERIONDUGDALE, AdhCriterionCreate_Dugdale));

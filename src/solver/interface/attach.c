@@ -60,7 +60,7 @@ PetscErrorCode AdhSolverAttachDecided_Private(AdhSolver s, Vec xC, PetscReal rno
   PetscReal          tu, rho, bound, v[2] = {PETSC_MAX_REAL, 0.0};
   PetscInt           k, counts[2] = {0, 0}; /* points in doubt, points that join */
   const PetscBool    reach = AttachReach(s);
-  const PetscReal    K00   = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+  const PetscReal    K00   = s->eops.self_compliance;
 
   PetscFunctionBegin;
   /* the criterion's decision at this iterate may have left p and its gap (crack-closure) */
@@ -106,7 +106,7 @@ PetscErrorCode AdhSolverAttach_Private(AdhSolver s, Vec rate, PetscReal e, Petsc
   PetscReal          tu;
   PetscInt           n, k, count = 0;
   const PetscBool    reach = AttachReach(s);
-  const PetscReal    K00   = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+  const PetscReal    K00   = s->eops.self_compliance;
   PetscReal          elimit = PETSC_MAX_REAL, efirst, limit;
 
   PetscFunctionBegin;

@@ -47,8 +47,7 @@ static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box
   if (size > 1) b->grid->fftw_effort = 0;
   else b->grid->fftw_timelimit = s->grid->fftw_timelimit;
   PetscCall(AdhGridSetUp(b->grid));
-  PetscCall(MatCreateAdhCompliance(b->grid, s->Estar, ADH_BOUNDARY_FREE, &b->K));
-  PetscCall(MatCreateAdhPeriodicStiffness(b->grid, s->Estar, &b->S));
+  PetscCall(s->eops.create_operators(s, b->grid, ADH_BOUNDARY_FREE, &b->K, &b->S));
   *box = b;
   PetscFunctionReturn(0);
 }

@@ -34,14 +34,15 @@ static const PetscLogDouble AdhRankBaseBytes = 50e6;
    crack-closure's rows beyond the rank's own (see above). */
 static PetscErrorCode BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLogDouble *per_rank)
 {
-  AdhTypeOps *types[3] = {&s->crops.base, &s->cops.base, &s->pops.base};
+  AdhTypeOps *types[ADH_NUM_KINDS];
 
   PetscFunctionBegin;
+  AdhSolverGetTypeOps_Private(s, types, NULL, NULL);
   *per_point = (s->boundary == ADH_BOUNDARY_PERIODIC ? 130.0 : 210.0) + (s->cascade_apart > 0 || (s->cascade_local > 0 && !PetscIsInfReal(s->cascade_local)) ? 2.0 : 0.0) + (s->cascade_single && (s->cascade_rtol > 0 || s->cascade_local > 0) ? 4.0 : 0.0);
   *per_rank  = AdhRankBaseBytes;
   /* the marks' band beyond a rank's own rows and the other ranks' rows in it: 4 D rows of bytes */
   *per_rank += 4.0 * PetscMin(PetscMax(s->cascade_apart, s->local_whole ? 0 : s->local_W), s->grid->Ny) * s->grid->Nx;
-  for (PetscInt k = 0; k < 3; k++) /* what the types add: crack-closure's (impls/criterion/crackclosure/crackclosure.c) */
+  for (PetscInt k = 0; k < ADH_NUM_KINDS; k++) /* what the types add: crack-closure's (impls/criterion/crackclosure/crackclosure.c) */
     if (types[k]->memory) {
       PetscLogDouble point = 0.0, rank = 0.0;
       PetscCall(types[k]->memory(s, &point, &rank));

@@ -123,7 +123,7 @@ static PetscErrorCode Create(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&m));
-  m->K00 = AdhLoveCoefficient(0.0, 0.0, s->grid->hx, s->grid->hy, s->Estar);
+  m->K00 = s->eops.self_compliance;
   if (s->boundary == ADH_BOUNDARY_PERIODIC) {
     m->S = s->S;
     m->C = s->K;
@@ -266,7 +266,7 @@ static PetscErrorCode Precondition(AdhSolver s, const PetscScalar *gamma, PetscB
   }
   PetscCall(VecSum(r, &sum));
   PetscCall(ApplyMeanFree(s, m->C, r, z));
-  if (force) PetscCall(VecShift(z, 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly)) * sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
+  if (force) PetscCall(VecShift(z, s->eops.mean_compliance * sum / ((PetscReal)s->grid->Nx * s->grid->Ny)));
   if (scaled) PetscCall(VecPointwiseMult(z, m->w, z));
   PetscFunctionReturn(0);
 }

@@ -36,7 +36,7 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
   if (!(dgamma > 0) || s->sigma_fixed > 0) PetscFunctionReturn(0);
   if (type == ADH_INDENTER_SPHERE) R = s->indenter.radius;
   else if (s->rms_curvature > 0) R = 1.0 / (PetscSqrtReal(8.0 / (3.0 * PETSC_PI)) * 2.0 * s->rms_curvature); /* the profile's (roughness.c); the Laplacian is twice the mean curvature */
-  if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * s->Estar), 1.0 / 3.0) / h;
+  if (R > 0) s->asperity_ac = PetscPowReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * AdhSolverSummitModulus_Private(s, R, dgamma)), 1.0 / 3.0) / h;
   if (R > 0 && s->crops.tabor) s->asperity_tabor = s->crops.tabor(s, R, dgamma);
   PetscFunctionReturn(0);
 }

@@ -2,9 +2,9 @@
    Laplacian, SurfaceTopography's convention) and the elastic energy per area that flattens it, for
    the resolution and stickiness estimates made at set-up.
 
-   On a periodic cell all three come from the stiffness S = E* |q| / 2 on the mean-free heights, exact
-   in the spectral sense: |S h| = (E* / 2) |grad h| and S S h = -(E* / 2)^2 Lap h in the mean, and the
-   energy is <h S h>/2. A measured map on the free boundary is not periodic, and its edges would
+   On a periodic cell the slope and the curvature come from the operator |q| on the mean-free
+   heights, exact in the spectral sense: | |q| h | = |grad h| and |q|^2 h = -Lap h in the mean; the
+   energy is <h S h>/2 with the body's stiffness S (E* |q| / 2 on a half-space). A measured map on the free boundary is not periodic, and its edges would
    count as steps: there the slope is the forward differences between neighbouring points and the
    curvature the three-point second differences at the interior points, as SurfaceTopography takes
    them for a map (a rank fetches the rows above and below its own); they read a wave of kh as
@@ -123,15 +123,19 @@ PetscErrorCode AdhSolverEstimateRoughness_Private(AdhSolver s)
     PetscCall(VecCopy(s->h, b));
     PetscCall(VecShift(b, -s->mean_h)); /* S keeps the mean mode (positive definite); it carries no energy */
   } else PetscCall(RemoveMeanPlane(s, b));
-  PetscCall(MatMult(s->S, b, a)); /* the pressure of full contact */
+  PetscCall(MatMult(s->S, b, a)); /* the pressure of full contact: the body's stiffness */
   PetscCall(VecDot(a, b, &dot));
   *energy = 0.5 * PetscRealPart(dot) / N;
   if (s->boundary == ADH_BOUNDARY_PERIODIC) {
-    PetscCall(MatMult(s->S, a, c));
+    Mat Q; /* |q|: the half-space stiffness of E* = 2, on the grid's transform */
+    PetscCall(MatCreateAdhPeriodicStiffness(s->grid, 2.0, &Q));
+    PetscCall(MatMult(Q, b, a));
+    PetscCall(MatMult(Q, a, c));
+    PetscCall(MatDestroy(&Q));
     PetscCall(VecNorm(a, NORM_2, &norm_a));
     PetscCall(VecNorm(c, NORM_2, &norm_c));
-    *slope     = 2.0 / s->Estar * norm_a / PetscSqrtReal(N);
-    *curvature = 0.5 * 4.0 / (s->Estar * s->Estar) * norm_c / PetscSqrtReal(N);
+    *slope     = norm_a / PetscSqrtReal(N);
+    *curvature = 0.5 * norm_c / PetscSqrtReal(N);
   } else if (s->grid->Nx >= 3 && s->grid->Ny >= 3) PetscCall(FiniteDifferences(s, slope, curvature));
   PetscCall(VecDestroy(&b));
   PetscCall(VecDestroy(&a));

@@ -75,6 +75,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->path[1] = 0.0;
   PetscCall(AdhGridCreate(comm, &s->grid));
   s->grid->fftw_timelimit = 0.01; /* free boundary: many windows to plan, few whole-grid multiplies */
+  PetscCall(AdhSolverSetElasticType(s, ADHELASTICHALFSPACE));
   PetscCall(AdhSolverSetControlType(s, ADHCONTROLDISPLACEMENT));
   PetscCall(AdhSolverSetCriterionType(s, ADHCRITERIONCRACKCLOSURE)); /* within 2% in every edge direction; the paper's rule is one option away */
   s->attach = ADH_ATTACH_GRIFFITH; /* crack-closure's mirror: JKR's and Johnson's loading branches (reach with pohrt-popov, at set-up; penetration stays Hertz-like) */
@@ -412,6 +413,7 @@ PetscErrorCode AdhSolverDestroy(AdhSolver *solver)
   }
   /* first, while the solver is whole: a file of AdhSolverOutputBegin() left open ends incomplete */
   PetscCall(AdhSolverOutputEnd(s, PETSC_FALSE));
+  if (s->eops.base.destroy) PetscCall(s->eops.base.destroy(s));
   if (s->cops.base.destroy) PetscCall(s->cops.base.destroy(s));
   if (s->crops.base.destroy) PetscCall(s->crops.base.destroy(s));
   if (s->pops.base.destroy) PetscCall(s->pops.base.destroy(s));

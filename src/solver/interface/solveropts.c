@@ -104,13 +104,19 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscInt          n = 256;
   PetscReal         path[256];
   PetscBool         set, certify = s->certify;
-  char              control[64], criterion[64], predictor[64];
+  char              control[64], criterion[64], predictor[64], elastic[64];
   PetscBool         monitor_set, help;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCall(AdhGridSetFromOptions(s->grid));
-  PetscCall(AdhGetReducedModulusFromOptions(s->comm, s->prefix, &s->Estar));
+  s->material.Estar = s->Estar;
+  PetscCall(AdhMaterialSetFromOptions_Private(s->comm, s->prefix, &s->material));
+  s->Estar = s->material.Estar;
+  PetscOptionsBegin(s->comm, s->prefix, "adhbem elastic body", "AdhSolver");
+  PetscCall(PetscOptionsFList("-adh_elastic", "What deforms: halfspace (an elastic half-space of modulus E*, free or periodic; the default) or layer (an elastic layer of thickness -adh_layer_thickness on a rigid base, bonded or slipping, periodic; needs -adh_E1 and -adh_nu1)", "AdhSolverSetElasticType", AdhElastics.list, s->elastic_type, elastic, sizeof(elastic), &set));
+  if (set) PetscCall(AdhSolverSetElasticType(s, elastic));
+  PetscOptionsEnd();
   PetscCall(AdhIndenterSetFromOptions(s->grid, s->prefix, &s->indenter));
   for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
   PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesion", "AdhSolver");
@@ -143,6 +149,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   if (set) PetscCall(AdhSolverSetPredictorType(s, predictor));
   PetscOptionsEnd();
   /* the types' own options, each in a group of its own (and under -help those of the types not chosen) */
+  PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhElastics, s->elastic_type, &s->eops.base));
   PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhCriteria, s->criterion_type, &s->crops.base));
   PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhControls, s->control_type, &s->cops.base));
   PetscCall(AdhSolverTypeSetFromOptions_Private(s, &AdhPredictors, s->predictor_type, &s->pops.base));

@@ -74,13 +74,11 @@ static PetscErrorCode LoadWorkOfAdhesionField(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi), or the fixed stress of -adh_critical_stress. */
+/* Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi) (the body's), or the fixed stress of -adh_critical_stress. */
 static PetscErrorCode ComputeCriticalStress(AdhSolver s)
 {
-  const AdhGrid g = s->grid;
-
   PetscFunctionBegin;
-  s->Sigma = s->sigma_fixed > 0 ? s->sigma_fixed : AdhCriticalStress(g->hx, g->hy, s->Estar, s->gamma);
+  s->Sigma = s->sigma_fixed > 0 ? s->sigma_fixed : s->eops.critical_stress(s, s->gamma);
   if (s->gamma_field && !(s->sigma_fixed > 0)) {
     PetscCall(VecDestroy(&s->Sigma_view));
     if (!s->Sigma_field) {
@@ -88,7 +86,7 @@ static PetscErrorCode ComputeCriticalStress(AdhSolver s)
       PetscCall(PetscObjectSetName((PetscObject)s->Sigma_field, "critical_stress"));
     }
     PetscCall(VecCopy(s->gamma_field, s->Sigma_field));
-    PetscCall(VecScale(s->Sigma_field, g->hx * g->hy * s->Estar / AdhChi(g->hx, g->hy)));
+    PetscCall(VecScale(s->Sigma_field, s->eops.stress_per_work));
     PetscCall(VecSqrtAbs(s->Sigma_field));
   } else {
     PetscCall(VecDestroy(&s->Sigma_field));
@@ -225,8 +223,10 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     }
     PetscCall(AdhSolverCheckResources_Private(s));
     PetscCall(AdhGridSetUp(s->grid));
-    PetscCall(MatCreateAdhCompliance(s->grid, s->Estar, s->boundary, &s->K));
-    PetscCall(MatCreateAdhPeriodicStiffness(s->grid, s->Estar, &s->S));
+    /* the body first: its constants and its operators */
+    PetscCheck(!(s->eops.periodic_only && s->boundary == ADH_BOUNDARY_FREE), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_elastic %s is a periodic cell only; give -adh_boundary periodic (the free boundary is a half-space's)", s->elastic_type);
+    if (s->eops.base.setup) PetscCall(s->eops.base.setup(s));
+    PetscCall(s->eops.create_operators(s, s->grid, s->boundary, &s->K, &s->S));
     PetscCall(AdhGridCreateVector(s->grid, &s->h));
     PetscCall(VecDuplicate(s->h, &s->p));
     PetscCall(VecDuplicate(s->h, &s->g));

@@ -55,6 +55,8 @@ PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "adhesive contact, %s boundary\n", AdhBoundaries[s->boundary]));
   PetscCall(AdhGridView(s->grid, viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "elastic body %s\n", s->elastic_type));
+  PetscCall(ViewType(viewer, &s->eops.base, s));
   PetscCall(PetscViewerASCIIPrintf(viewer, "E* = %g, dgamma = %g%s, Sigma = %g%s\n", (double)s->Estar, (double)s->gamma, s->gamma_field ? " (field)" : "", (double)s->Sigma, s->sigma_fixed > 0 ? " (fixed by -adh_critical_stress)" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "indenter %s, start %s, %" PetscInt_FMT " path points, %" PetscInt_FMT " steps per leg\n", AdhIndenterTypes[s->indenter.type], AdhStarts[s->start], s->npath, s->steps));
   if (s->indenter.type == ADH_INDENTER_ROUGH) PetscCall(AdhSurfaceView(&s->indenter.surface, viewer));

@@ -1,7 +1,7 @@
-/* What the solver does alike for the types of its three kinds (criterion, control, predictor):
+/* What the solver does alike for the types of its four kinds (elastic body, criterion, control, predictor):
    set a type, read a type's options in a -help group of its own, and read the options of the
-   registered types it does not have. The kinds' registries are in criterion.c, control.c and
-   predictor.c, the built-in types' registration in impls/register.c. */
+   registered types it does not have. The kinds' registries are in elastic.c, criterion.c,
+   control.c and predictor.c, the built-in types' registration in impls/register.c. */
 #include "solver/solverimpl.h"
 
 PetscErrorCode AdhSolverSetType_Private(AdhSolver s, AdhRegistry *reg, char current[64], AdhTypeOps *ops, size_t size, const char type[], PetscBool fixed)
@@ -57,18 +57,20 @@ PetscErrorCode AdhSolverReadTypesOptions_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(AdhSolverCreate(s->comm, &scratch));
   PetscCall(AdhSolverSetOptionsPrefix(scratch, s->prefix));
-  for (PetscInt k = 0; k < 3; k++) {
-    AdhRegistry *reg   = k == 0 ? &AdhCriteria : k == 1 ? &AdhControls : &AdhPredictors;
-    AdhTypeOps  *ops   = k == 0 ? &scratch->crops.base : k == 1 ? &scratch->cops.base : &scratch->pops.base;
+  for (PetscInt k = 0; k < ADH_NUM_KINDS; k++) {
+    AdhRegistry *regs[ADH_NUM_KINDS];
+    AdhTypeOps  *ops[ADH_NUM_KINDS];
     const char **names;
     PetscInt     n;
 
-    PetscCall(AdhRegistryGetNames_Private(reg, &n, &names));
+    AdhSolverGetTypeOps_Private(scratch, ops, regs, NULL);
+    PetscCall(AdhRegistryGetNames_Private(regs[k], &n, &names));
     for (PetscInt t = 0; t < n; t++) {
-      if (k == 0) PetscCall(AdhSolverSetCriterionType(scratch, names[t]));
-      else if (k == 1) PetscCall(AdhSolverSetControlType(scratch, names[t]));
+      if (k == 0) PetscCall(AdhSolverSetElasticType(scratch, names[t]));
+      else if (k == 1) PetscCall(AdhSolverSetCriterionType(scratch, names[t]));
+      else if (k == 2) PetscCall(AdhSolverSetControlType(scratch, names[t]));
       else PetscCall(AdhSolverSetPredictorType(scratch, names[t]));
-      PetscCall(AdhSolverTypeSetFromOptions_Private(scratch, reg, names[t], ops));
+      PetscCall(AdhSolverTypeSetFromOptions_Private(scratch, regs[k], names[t], ops[k]));
     }
     PetscCall(PetscFree(names));
   }

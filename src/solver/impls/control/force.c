@@ -116,7 +116,7 @@ static PetscErrorCode SetUp_Force(AdhSolver s)
   if (s->boundary == ADH_BOUNDARY_PERIODIC && !f->Kmean) {
     /* c0 = 2/(E* q_min), the compliance of the longest wave: the Fourier preconditioner's mean
        mode is its inverse, so the preconditioned operator stays well conditioned. */
-    f->c0 = 2.0 / (s->Estar * 2.0 * PETSC_PI / PetscMax(s->grid->Lx, s->grid->Ly));
+    f->c0 = s->eops.mean_compliance;
     PetscCall(MatCreateAdhMeanCompliance(s->K, f->c0, &f->Kmean));
     s->Kcontrol        = f->Kmean;
     s->Kcontrol_lambda = f->c0;

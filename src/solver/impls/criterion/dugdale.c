@@ -218,14 +218,14 @@ static PetscErrorCode SetUp_Dugdale(AdhSolver s)
 /* Tabor-Maugis' lambda of a sphere of radius R: 2 s0 (R / (pi dgamma K^2))^(1/3), K = 4 E* / 3. */
 static PetscReal Lambda(AdhSolver s, PetscReal s0)
 {
-  const PetscReal K = 4.0 * s->Estar / 3.0, R = s->indenter.radius;
+  const PetscReal R = s->indenter.radius, K = 4.0 * AdhSolverSummitModulus_Private(s, R, s->gamma) / 3.0;
   return 2.0 * s0 * PetscCbrtReal(R / (PETSC_PI * s->gamma * K * K));
 }
 
 /* The resolution report's Tabor-Maugis parameter of a summit of radius R. */
 static PetscReal Tabor_Dugdale(AdhSolver s, PetscReal R, PetscReal dgamma)
 {
-  const PetscReal K = 4.0 * s->Estar / 3.0;
+  const PetscReal K = 4.0 * AdhSolverSummitModulus_Private(s, R, dgamma) / 3.0;
   return 2.0 * ((Dugdale *)s->crops.data)->s0 * PetscCbrtReal(R / (PETSC_PI * dgamma * K * K));
 }
 

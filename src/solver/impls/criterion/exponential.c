@@ -80,14 +80,16 @@ static PetscErrorCode SetUp_Exponential(AdhSolver s)
 /* Tabor's parameter of a sphere of radius R: (R dgamma^2 / (E*^2 rho^3))^(1/3). */
 static PetscReal Tabor(AdhSolver s, PetscReal rho)
 {
-  return PetscCbrtReal(s->indenter.radius * s->gamma * s->gamma / (s->Estar * s->Estar * rho * rho * rho));
+  const PetscReal E = AdhSolverSummitModulus_Private(s, s->indenter.radius, s->gamma);
+  return PetscCbrtReal(s->indenter.radius * s->gamma * s->gamma / (E * E * rho * rho * rho));
 }
 
 /* The resolution report's Tabor parameter of a summit of radius R. */
 static PetscReal Tabor_Exponential(AdhSolver s, PetscReal R, PetscReal dgamma)
 {
   const PetscReal rho = ((Exponential *)s->crops.data)->rho;
-  return PetscCbrtReal(R * dgamma * dgamma / (s->Estar * s->Estar * rho * rho * rho));
+  const PetscReal E   = AdhSolverSummitModulus_Private(s, R, dgamma);
+  return PetscCbrtReal(R * dgamma * dgamma / (E * E * rho * rho * rho));
 }
 
 /* The range of its attraction: rho, whatever dgamma. */

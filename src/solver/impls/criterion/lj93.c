@@ -94,7 +94,8 @@ static PetscErrorCode SetUp_LJ93(AdhSolver s)
 static PetscReal Tabor_LJ93(AdhSolver s, PetscReal R, PetscReal dgamma)
 {
   const PetscReal z0 = ((LJ93 *)s->crops.data)->z0;
-  return PetscCbrtReal(R * dgamma * dgamma / (s->Estar * s->Estar * z0 * z0 * z0));
+  const PetscReal E = AdhSolverSummitModulus_Private(s, R, dgamma);
+  return PetscCbrtReal(R * dgamma * dgamma / (E * E * z0 * z0 * z0));
 }
 
 /* The range of its attraction for the stickiness criteria: dgamma over the peak tension, as for

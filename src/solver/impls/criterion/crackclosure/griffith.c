@@ -16,8 +16,8 @@
 PetscErrorCode AdhCrackClosureGriffithLimits_Private(AdhSolver s, CrackClosure *cc)
 {
   const AdhGrid      g  = s->grid;
-  const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar);
-  const PetscReal    K00  = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
+  const PetscReal    chi_per_area = s->eops.chi_per_area;
+  const PetscReal    K00  = s->eops.self_compliance;
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   const PetscScalar *ta, **ol, **hl, **pl, **Gl;
   const char       **sl;

@@ -15,7 +15,7 @@ PetscErrorCode AdhCrackClosureRules_Private(AdhSolver s, PetscBool detach, Petsc
 {
   CrackClosure      *cc = (CrackClosure *)s->crops.data;
   const AdhGrid      g  = s->grid;
-  const PetscReal    chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar); /* dgamma = chi Sigma^2 / (hx hy E*) */
+  const PetscReal    chi_per_area = s->eops.chi_per_area; /* dgamma = chi Sigma^2 / (hx hy E*) */
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscScalar       *pa, *xa = NULL, *Ga;
   const PetscScalar *ta, **ol, **hl, **Gl;

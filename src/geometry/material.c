@@ -10,34 +10,6 @@ static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, c
   PetscFunctionReturn(0);
 }
 
-/*@
-  AdhGetReducedModulusFromOptions - Gets the reduced modulus E* of the two elastic bodies from the options database
-
-  Collective
-
-  Input Parameters:
-+ comm   - the communicator of the options
-- prefix - the options prefix, or `NULL`
-
-  Output Parameter:
-. Estar - the reduced modulus; its value on entry is kept when no option is given
-
-  Options Database Keys:
-+ -adh_E_star <Estar> - the reduced modulus E*
-. -adh_E1 <E1> - Young's modulus of body 1 (instead of -adh_E_star)
-. -adh_nu1 <nu1> - Poisson ratio of body 1 (default 0)
-. -adh_E2 <E2> - Young's modulus of body 2 (default: rigid)
-- -adh_nu2 <nu2> - Poisson ratio of body 2 (default 0)
-
-  Notes:
-  1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2. -adh_E_star cannot be combined with the others, -adh_E1 is required when any of
-  -adh_nu1, -adh_E2, -adh_nu2 is given, and -adh_nu2 needs -adh_E2. The Young's moduli must be positive and finite, the Poisson
-  ratios in (-1, 0.5], and E* itself, however given, positive and finite. Every error names the option.
-
-  Level: intermediate
-
-.seealso: `MatCreateAdhCompliance()`, `AdhSolverSetFromOptions()`
-@*/
 /* The solids' constants into *m (its Estar on entry kept when no option is given). */
 PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm comm, const char prefix[], AdhMaterial *m)
 {
@@ -72,6 +44,34 @@ PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm comm, const char prefi
   PetscFunctionReturn(0);
 }
 
+/*@
+  AdhGetReducedModulusFromOptions - Gets the reduced modulus E* of the two elastic bodies from the options database
+
+  Collective
+
+  Input Parameters:
++ comm   - the communicator of the options
+- prefix - the options prefix, or `NULL`
+
+  Output Parameter:
+. Estar - the reduced modulus; its value on entry is kept when no option is given
+
+  Options Database Keys:
++ -adh_E_star <Estar> - the reduced modulus E*
+. -adh_E1 <E1> - Young's modulus of body 1 (instead of -adh_E_star)
+. -adh_nu1 <nu1> - Poisson ratio of body 1 (default 0)
+. -adh_E2 <E2> - Young's modulus of body 2 (default: rigid)
+- -adh_nu2 <nu2> - Poisson ratio of body 2 (default 0)
+
+  Notes:
+  1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2. -adh_E_star cannot be combined with the others, -adh_E1 is required when any of
+  -adh_nu1, -adh_E2, -adh_nu2 is given, and -adh_nu2 needs -adh_E2. The Young's moduli must be positive and finite, the Poisson
+  ratios in (-1, 0.5], and E* itself, however given, positive and finite. Every error names the option.
+
+  Level: intermediate
+
+.seealso: `MatCreateAdhCompliance()`, `AdhSolverSetFromOptions()`
+@*/
 PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[], PetscReal *Estar)
 {
   AdhMaterial m;

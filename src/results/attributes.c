@@ -129,6 +129,7 @@ PetscErrorCode AdhOutputWriteAttributes_Private(AdhSolver s, PetscViewer v)
   PetscCall(AdhH5WriteStringAttribute_Private(v, "start", AdhStarts[s->start]));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "control", s->control_type));
   PetscCall(AdhH5WriteStringAttribute_Private(v, "criterion", s->criterion_type));
+  PetscCall(AdhH5WriteStringAttribute_Private(v, "elastic", s->elastic_type));
   /* the types' own (the body's, crack-closure's radii, force control's pull-off tolerance): their views on the HDF5 viewer */
   if (s->eops.base.view) PetscCall(s->eops.base.view(s, v));
   if (s->crops.base.view) PetscCall(s->crops.base.view(s, v));

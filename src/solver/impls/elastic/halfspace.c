@@ -53,17 +53,6 @@ static PetscErrorCode SetUp_HalfSpace(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
-/* Its attribute in the results file (-adh_view's line "elastic body halfspace" and E* are the solver's). */
-static PetscErrorCode View_HalfSpace(AdhSolver s, PetscViewer viewer)
-{
-  PetscBool ishdf5;
-
-  PetscFunctionBegin;
-  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERHDF5, &ishdf5));
-  if (ishdf5) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "elastic", PETSC_STRING, ADHELASTICHALFSPACE));
-  PetscFunctionReturn(0);
-}
-
 PETSC_INTERN PetscErrorCode AdhElasticCreate_HalfSpace(AdhSolver s)
 {
   PetscFunctionBegin;
@@ -72,6 +61,5 @@ PETSC_INTERN PetscErrorCode AdhElasticCreate_HalfSpace(AdhSolver s)
   s->eops.modulus          = Modulus_HalfSpace;
   s->eops.critical_stress  = CriticalStress_HalfSpace;
   s->eops.base.setup       = SetUp_HalfSpace;
-  s->eops.base.view        = View_HalfSpace;
   PetscFunctionReturn(0);
 }

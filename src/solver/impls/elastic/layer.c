@@ -24,9 +24,12 @@
    is left to the indentation as on a periodic half-space: d is the approach to the surface's mean plane, without the
    layer's uniform compression under the mean pressure.
 
-   The element's self-compliance and self-energy are the half-space's of E* (Love's, Pohrt and Popov's chi) plus the
-   diagonal of the circulant of C(q) - 2/(E* q), the smooth difference the layer makes; the critical stress follows from
-   them as on the half-space. The estimates made before a run (the JKR radius of the smallest asperities, Tabor's
+   The element's self-compliance and self-energy are the half-space's of E* (Love's, Pohrt and Popov's chi) plus what
+   the layer adds under the element's own uniform pressure on the cell: the sums over the cell's wave vectors of
+   C(q) - 2/(E* q) times the element's shape factor S(q) = sinc(qx hx/2) sinc(qy hy/2) (at its centre) and S(q)^2 (its
+   average), carried beyond the grid's modes to where the difference vanishes. For a layer thinner than an eighth of
+   the grid spacing they are the sums of C(q) itself over eight bands of aliases, approximate (-adh_view says so): the
+   criteria of zero range (crack-closure, pohrt-popov) and the attach rule reach use them, the cohesive laws do not. The critical stress follows from them as on the half-space. The estimates made before a run (the JKR radius of the smallest asperities, Tabor's
    parameter, stickiness) use the modulus 2/(q C(q)) at the contact's wave number.
 
    The free boundary is refused: the layer's compliance is periodic only.
@@ -42,7 +45,8 @@ typedef struct {
   PetscReal    T;              /* -adh_layer_thickness */
   AdhLayerBase base;           /* -adh_layer_base */
   PetscReal    E1, nu1, E2, nu2;
-  PetscReal    diagonal_shift; /* the diagonal of the circulant of C(q) - 2/(E* q) */
+  PetscReal    ratio;          /* the element's self-compliance over the half-space's (for the view) */
+  PetscBool    thin;           /* thinner than an eighth of the grid spacing: the element's constants from truncated sums */
 } Layer;
 
 /* sinh(x) - x without the cancellation of small x */
@@ -117,14 +121,63 @@ static PetscErrorCode SetFromOptions_Layer(AdhSolver s, AdhOptionItems PetscOpti
   PetscFunctionReturn(0);
 }
 
-/* The solids' constants, and the diagonal of C(q) - 2/(E* q) over the grid's modes (this rank's
-   rows of ky, summed over the ranks). */
+/* sin(z)/z */
+static PetscReal Sinc(PetscReal z)
+{
+  return PetscAbsReal(z) < 1e-8 ? 1.0 : PetscSinReal(z) / z;
+}
+
+/* What the layer adds to the half-space's element, from the element's own uniform unit pressure on
+   the periodic cell: at its centre, sum_q dC(q) S(q) / N, and on its average, sum_q dC(q) S(q)^2 / N,
+   with dC = C - 2/(E* q) and S the element's shape factor sinc(qx hx/2) sinc(qy hy/2), over every
+   wave vector of the cell but the mean: the grid's modes and their aliases (k + a N), as far as
+   2 q T < 80, beyond which dC is below exp(-80) of C, and |a| <= ADH_LAYER_ALIASES (there 2 q T
+   reaches 13 for T = h/8). With whole, C itself instead of dC (for a layer thinner than that: a
+   sum of positive terms on the average). This rank sums its rows of ky. */
+#define ADH_LAYER_ALIASES 8
+static PetscErrorCode ElementSums(AdhSolver s, const Layer *l, PetscBool whole, PetscReal shift[2])
+{
+  const AdhGrid  g = s->grid;
+  const PetscReal qcut = 40.0 / l->T;
+  /* the aliases reach the cut-off, at least one band around the grid's modes and at most
+     ADH_LAYER_ALIASES: for a layer thinner than an eighth of an element the sums stop short */
+  const PetscInt ax = PetscMin((PetscInt)PetscCeilReal(qcut * g->Lx / (2.0 * PETSC_PI * g->Nx)) + 1, ADH_LAYER_ALIASES), ay = PetscMin((PetscInt)PetscCeilReal(qcut * g->Ly / (2.0 * PETSC_PI * g->Ny)) + 1, ADH_LAYER_ALIASES);
+
+  PetscFunctionBegin;
+  shift[0] = shift[1] = 0.0;
+  for (PetscInt j = g->ys; j < g->ys + g->ym; j++) {
+    const PetscInt ky0 = j <= g->Ny / 2 ? j : j - g->Ny;
+    for (PetscInt b = -ay; b <= ay; b++) {
+      const PetscReal qy = 2.0 * PETSC_PI * (ky0 + b * g->Ny) / g->Ly;
+      if (PetscAbsReal(qy) > qcut) continue;
+      for (PetscInt i = 0; i < g->Nx; i++) {
+        const PetscInt kx0 = i <= g->Nx / 2 ? i : i - g->Nx;
+        for (PetscInt a = -ax; a <= ax; a++) {
+          const PetscReal qx = 2.0 * PETSC_PI * (kx0 + a * g->Nx) / g->Lx, q = PetscSqrtReal(qx * qx + qy * qy);
+          PetscReal       dC, S;
+          if (q > qcut || q == 0.0) continue;
+          dC = whole ? Symbol_Layer((void *)l, q) : SymbolShift_Layer(l, q);
+          S  = Sinc(0.5 * qx * g->hx) * Sinc(0.5 * qy * g->hy);
+          shift[0] += dC * S;
+          shift[1] += dC * S * S;
+        }
+      }
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, shift, 2, MPIU_REAL, MPIU_SUM, s->comm));
+  shift[0] /= (PetscReal)g->Nx * (PetscReal)g->Ny;
+  shift[1] /= (PetscReal)g->Nx * (PetscReal)g->Ny;
+  PetscFunctionReturn(0);
+}
+
+/* The solids' constants, and the element's self-compliance and self-energy: the half-space's of E*
+   and what the layer adds. */
 static PetscErrorCode SetUp_Layer(AdhSolver s)
 {
-  Layer          *l = (Layer *)s->eops.data;
-  const AdhGrid   g = s->grid;
+  Layer             *l = (Layer *)s->eops.data;
+  const AdhGrid      g = s->grid;
   const AdhMaterial *m = &s->material;
-  PetscReal       sum = 0.0;
+  PetscReal          shift[2];
 
   PetscFunctionBegin;
   PetscCheck(l->T > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_elastic layer needs the thickness: give -adh_layer_thickness T (> 0)");
@@ -132,21 +185,18 @@ static PetscErrorCode SetUp_Layer(AdhSolver s)
   PetscCheck(m->solids, s->comm, PETSC_ERR_USER_INPUT, "-adh_elastic layer needs the layer's own constants: give -adh_E1 E and -adh_nu1 NU (E* alone, -adh_E_star, does not fix a layer's stiffness)");
   PetscCheck(m->nu1 >= 0.0 && m->nu1 <= 0.5, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_nu1: the layer's Poisson ratio must lie in [0, 0.5], got %g", (double)m->nu1);
   l->E1 = m->E1; l->nu1 = m->nu1; l->E2 = m->E2; l->nu2 = m->nu2;
-  for (PetscInt j = g->ys; j < g->ys + g->ym; j++) {
-    const PetscInt  ky = j <= g->Ny / 2 ? j : j - g->Ny;
-    const PetscReal qy = 2.0 * PETSC_PI * ky / g->Ly;
-    for (PetscInt i = 0; i < g->Nx; i++) {
-      const PetscInt  kx = i <= g->Nx / 2 ? i : i - g->Nx;
-      const PetscReal qx = 2.0 * PETSC_PI * kx / g->Lx;
-      if (kx || ky) sum += SymbolShift_Layer(l, PetscSqrtReal(qx * qx + qy * qy));
-    }
+  l->thin = (PetscBool)(8.0 * l->T < PetscMin(g->hx, g->hy));
+  PetscCall(ElementSums(s, l, l->thin, shift));
+  /* U_el = sigma^2 A (chi/(A E*) + shift/2): the energy of the element's load over its own displacement */
+  if (l->thin) {
+    s->eops.self_compliance = shift[0];
+    s->eops.chi_per_area    = 0.5 * shift[1];
+  } else {
+    s->eops.self_compliance = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar) + shift[0];
+    s->eops.chi_per_area    = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar) + 0.5 * shift[1];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, s->comm));
-  l->diagonal_shift       = sum / ((PetscReal)g->Nx * (PetscReal)g->Ny);
-  s->eops.self_compliance = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar) + l->diagonal_shift;
-  /* the element's self-energy, sigma^2 A (chi/(A E*) + shift/2): the shift is smooth over an element */
-  s->eops.chi_per_area = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar) + 0.5 * l->diagonal_shift;
-  PetscCheck(s->eops.self_compliance > 0 && s->eops.chi_per_area > 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_layer_thickness %g is too thin for the grid spacing %g: the element's self-compliance is not positive; refine the grid to a few elements across the thickness", (double)l->T, (double)PetscMin(g->hx, g->hy));
+  l->ratio                = s->eops.self_compliance / AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
+  PetscCheck(s->eops.self_compliance > 0 && s->eops.chi_per_area > 0, s->comm, PETSC_ERR_PLIB, "-adh_elastic layer: the element's self-compliance %g or self-energy %g is not positive", (double)s->eops.self_compliance, (double)s->eops.chi_per_area);
   s->eops.stress_per_work = 1.0 / s->eops.chi_per_area;
   s->eops.mean_compliance = Symbol_Layer(l, 2.0 * PETSC_PI / PetscMax(g->Lx, g->Ly));
   PetscFunctionReturn(0);
@@ -179,10 +229,9 @@ static PetscErrorCode View_Layer(AdhSolver s, PetscViewer viewer)
   if (isascii) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "elastic layer of thickness %g %s on a rigid base: E1 = %g, nu1 = %g; indenter %s", (double)l->T, l->base == ADH_LAYER_BONDED ? "bonded" : "slipping", (double)l->E1, (double)l->nu1, PetscIsInfReal(l->E2) ? "rigid" : "elastic"));
     if (!PetscIsInfReal(l->E2)) PetscCall(PetscViewerASCIIPrintf(viewer, ", E2 = %g, nu2 = %g", (double)l->E2, (double)l->nu2));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "\n  thickness over the grid spacing %g; the element's self-compliance %g (the half-space's of E* = %g: %g)\n", (double)(l->T / PetscMin(s->grid->hx, s->grid->hy)), (double)s->eops.self_compliance, (double)s->Estar, (double)(s->eops.self_compliance - l->diagonal_shift)));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n  thickness over the grid spacing %g; the element's self-compliance %g times the half-space's of E* = %g%s\n", (double)(l->T / PetscMin(s->grid->hx, s->grid->hy)), (double)l->ratio, (double)s->Estar, l->thin ? " (approximate: the layer is thinner than an eighth of the grid spacing)" : ""));
   }
   if (ishdf5) {
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "elastic", PETSC_STRING, ADHELASTICLAYER));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "layer_thickness", PETSC_REAL, &l->T));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "layer_base", PETSC_STRING, AdhLayerBases[l->base]));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "E1", PETSC_REAL, &l->E1));

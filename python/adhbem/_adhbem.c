@@ -123,7 +123,10 @@ static void SetPythonError(PetscErrorCode n)
     snprintf(ErrorText, sizeof(ErrorText), "%s", text ? text : "unknown PETSc error");
   }
   StripSolverPrefix(ErrorText);
-  PyErr_SetString(PythonExceptionType(ErrorCode ? ErrorCode : n), ErrorText);
+  /* PETSc refuses a value outside an enumeration's choices with PETSC_ERR_USER, the code of any
+     user's error: the text tells it, and it is bad input */
+  if ((ErrorCode ? ErrorCode : n) == PETSC_ERR_USER && !strncmp(ErrorText, "Unknown option ", 15) && strstr(ErrorText, "Available options")) PyErr_SetString(PyExc_ValueError, ErrorText);
+  else PyErr_SetString(PythonExceptionType(ErrorCode ? ErrorCode : n), ErrorText);
   PyErr_Fetch(&type, &value, &tb);
   PyErr_NormalizeException(&type, &value, &tb);
   code = PyLong_FromLong((long)(ErrorCode ? ErrorCode : n));

@@ -89,8 +89,9 @@ def _close(runs):
 
 def analytic(params, d, area):
     """(label, d, F, A) of the analytic curve of this run, or None (periodic cells, topographies,
-    dgamma fields)."""
-    if params.get("boundary") != "free" or params.get("gamma_field") or params.get("critical_stress_fixed"):
+    dgamma fields, a body other than the half-space)."""
+    if (params.get("boundary") != "free" or params.get("gamma_field") or params.get("critical_stress_fixed")
+            or params.get("elastic", "halfspace") != "halfspace"):
         return None
     E, gamma, kind = params["E_star"], params.get("gamma", 0.0), params.get("indenter")
     amax = 1.2 * math.sqrt(max(area.max(), 1e-300) / math.pi)
@@ -189,7 +190,8 @@ def scales(params):
     dgamma > 0 on a free boundary, else None."""
     g = params.get("gamma", 0.0)
     if (params.get("indenter") == "sphere" and params.get("boundary") == "free" and g > 0
-            and not params.get("gamma_field") and not params.get("critical_stress_fixed")):
+            and not params.get("gamma_field") and not params.get("critical_stress_fixed")
+            and params.get("elastic", "halfspace") == "halfspace"):
         R, E = params["radius"], params["E_star"]
         return ("jkr", 1.5 * math.pi * g * R, (9 * math.pi * g * R ** 2 / (8 * E)) ** (1 / 3),
                 (3 * math.pi ** 2 * g ** 2 * R / (64 * E ** 2)) ** (1 / 3))

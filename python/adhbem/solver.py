@@ -133,8 +133,7 @@ class Solver:
         # replaced by a default (or reported by PETSc without the keyword's name).
         import numbers
         from .options import solver_options, _is_sequence
-        table = {o.name: o for o in solver_options()}
-        kinds = {name: o.kind for name, o in table.items()}
+        kinds = {o.name: o.kind for o in solver_options()}
 
         def number(key, v, integer):
             """v checked; the value to pass (an integral float as an int for an integer option)."""
@@ -170,10 +169,6 @@ class Solver:
                 if _is_sequence(value):
                     raise TypeError(f"{key}: expected one number, got a sequence {value!r}")
                 options[key] = number(key, value, kind == "int")
-            elif kind == "choice" and isinstance(value, str) and table[key].choices:
-                # PETSc's enumerations match without regard to case
-                if value.lower() not in (c.lower() for c in table[key].choices):
-                    raise ValueError(f"{key}: {value!r} is not one of {', '.join(table[key].choices)}")
             elif kind in ("int list", "real list"):
                 if isinstance(value, str):  # the option's own text, "0,0.02,-0.03"
                     values = [v for v in value.split(",") if v.strip()]

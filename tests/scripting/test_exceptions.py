@@ -20,6 +20,7 @@ SMALL = dict(n=16, path=[0.01, 0.0], steps=1)
     (dict(topography="no/such/file.npy"), FileNotFoundError, "-adh_topography: cannot open no/such/file.npy"),
     (dict(radius=-1.0), ValueError, "-adh_radius must be positive"),
     (dict(criterion="griffith"), ValueError, "-adh_criterion"),
+    (dict(boundary="fre"), ValueError, "Unknown option fre for -adh_boundary. Available options: free periodic"),
     (dict(n=40000, boundary="periodic", memory_check=True), MemoryError, "-adh_n: 40000 x 40000 needs about"),
 ])
 def test_the_matching_python_exception(kwargs, kind, words):

@@ -226,7 +226,7 @@ def test_attributes_and_restart_refusal(tmp_path):
     (dict(nu1=-0.1), "-adh_nu1"),
     (dict(nu1=0.6), "-adh_nu1"),
     (dict(E1=None, E_star=1.0), "-adh_E1"),
-    (dict(layer_base="glued"), "layer_base"),
+    (dict(layer_base="glued"), "-adh_layer_base"),
 ])
 def test_bad_input(options, words):
     """Each refused with one line naming the option (ValueError from Python)."""

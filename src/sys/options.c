@@ -10,7 +10,7 @@
 static const char *const AdhOptionNames[] = {
   "adh_n", "adh_size", "adh_E_star", "adh_E1", "adh_E2", "adh_nu1", "adh_nu2", "adh_gamma", "adh_gamma_field",
   "adh_gamma_field_dataset", "adh_critical_stress", "adh_boundary", "adh_indenter", "adh_radius", "adh_punch_radius",
-  "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
+  "adh_elastic", "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
   "adh_rms_height", "adh_rms_slope", "adh_rolloff_wavelength", "adh_cutoff_wavelength", "adh_seed", "adh_control",
   "adh_criterion", "adh_path", "adh_steps", "adh_stop_at_pulloff", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart", "adh_cascade_local", "adh_cascade_local_rtol",
   "adh_memory_check", "adh_box", "adh_max_outer", "adh_minimize_rtol", "adh_minimize_max_it", "adh_minimize_monitor", "adh_minimize_pc", "adh_predictor", "adh_monitor", "adh_monitor_interval", "adh_progress",

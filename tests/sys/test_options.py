@@ -36,11 +36,13 @@ def test_option_list_is_what_help_shows():
         for m in re.findall(r"^\s*-(adh_[A-Za-z0-9_]+)", line):
             if not m.startswith(("adh_ksp_", "adh_pc_", "adh_local_ksp_", "adh_local_pc_")):
                 groups.setdefault(title, set()).add(m)
-    typed = {t: o for t, o in groups.items() if re.search(r"\(-adh_(criterion|control|predictor) [\w-]+\)$", t)}
-    assert set(typed) >= {"adhbem detachment criterion crack-closure (-adh_criterion crack-closure)",
+    typed = {t: o for t, o in groups.items() if re.search(r"\(-adh_(elastic|criterion|control|predictor) [\w-]+\)$", t)}
+    assert set(typed) >= {"adhbem elastic body layer (-adh_elastic layer)",
+                          "adhbem detachment criterion crack-closure (-adh_criterion crack-closure)",
                           "adhbem load control force (-adh_control force)",
                           "adhbem contact-set predictor polonsky-keer (-adh_predictor polonsky-keer)"}
     assert typed["adhbem load control force (-adh_control force)"] == {"adh_pulloff_rtol"}
+    assert typed["adhbem elastic body layer (-adh_elastic layer)"] == {"adh_layer_thickness", "adh_layer_base"}
     own = set().union(*(o for t, o in groups.items() if t not in typed))
     assert own == set(_adhbem.option_names())
 

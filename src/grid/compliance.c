@@ -48,7 +48,7 @@ const char *const AdhBoundaries[] = {"free", "periodic", "AdhBoundary", "ADH_BOU
 
 /* Forward transform of the array, the multiplier, backward transform: in double, or in single
    precision on the float twin (MatAdhComplianceSetSinglePrecision). */
-PetscErrorCode AdhComplianceConvolve_Private(Mat K, Compliance *c, PetscBool single)
+PetscErrorCode AdhComplianceConvolve_Private(Mat K, AdhComplianceCtx *c, PetscBool single)
 {
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(ADH_FFTForward, K, 0, 0, 0));
@@ -69,7 +69,7 @@ PetscErrorCode AdhComplianceConvolve_Private(Mat K, Compliance *c, PetscBool sin
 
 static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
 {
-  Compliance        *c;
+  AdhComplianceCtx  *c;
   const PetscScalar *xa;
   PetscScalar       *ya;
   PetscInt           r;
@@ -102,7 +102,7 @@ static PetscErrorCode MatMult_Compliance(Mat K, Vec x, Vec y)
 
 /* The compliance or stiffness shell behind K (K itself, or with through_mean the one a mean
    compliance wraps, then with the wrapper's context), or an error naming the call. */
-PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, Compliance **c, MeanCompliance **mean)
+PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, AdhComplianceCtx **c, AdhMeanComplianceCtx **mean)
 {
   void (*mult)(void);
   PetscBool shell;
@@ -148,8 +148,8 @@ PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool th
 @*/
 PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceHasDirectLayout", PETSC_TRUE, &c, &mean));
@@ -181,8 +181,8 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
 @*/
 PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceSetSinglePrecision", PETSC_TRUE, &c, &mean));
@@ -222,13 +222,13 @@ PetscErrorCode MatAdhComplianceSetSinglePrecision(Mat K, PetscBool single)
 @*/
 PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local[], Vec xC, Vec yC)
 {
-  Compliance        *c;
-  MeanCompliance    *mean;
-  const PetscScalar *xa;
-  PetscScalar       *ya;
-  PetscInt           k, r;
-  double            *data;
-  float             *fdata;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
+  const PetscScalar    *xa;
+  PetscScalar          *ya;
+  PetscInt              k, r;
+  double               *data;
+  float                *fdata;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceMultOnSet", PETSC_TRUE, &c, &mean));
@@ -264,7 +264,7 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
 
 static PetscErrorCode MatGetDiagonal_Compliance(Mat K, Vec d)
 {
-  Compliance *c;
+  AdhComplianceCtx *c;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
@@ -274,15 +274,15 @@ static PetscErrorCode MatGetDiagonal_Compliance(Mat K, Vec d)
 
 static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
 {
-  Compliance *c;
+  AdhComplianceCtx *c;
   PetscBool   isascii;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
-    if (c->kind == KIND_STIFFNESS && !c->Estar) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic stiffness 1/C(|q|) of an elastic body (adhbem preconditioner)\n"));
-    else if (c->kind == KIND_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
+    if (c->kind == ADH_OPERATOR_STIFFNESS && !c->Estar) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic stiffness 1/C(|q|) of an elastic body (adhbem preconditioner)\n"));
+    else if (c->kind == ADH_OPERATOR_STIFFNESS) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic half-space stiffness E*|q|/2 (adhbem preconditioner), E* = %g\n", (double)c->Estar));
     else if (!c->Estar) PetscCall(PetscViewerASCIIPrintf(viewer, "Periodic compliance C(|q|) of an elastic body (adhbem)\n"));
     else PetscCall(PetscViewerASCIIPrintf(viewer, "Half-space compliance (adhbem), %s boundary, E* = %g\n", AdhBoundaries[c->boundary], (double)c->Estar));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT ", elements %g x %g; %s r2c transform %td x %td\n", c->Nx, c->Ny, (double)c->hx, (double)c->hy, c->t->serial ? "FFTW (one rank)" : "FFTW-MPI (transposed spectrum)", c->t->n1, c->t->n0));
@@ -293,7 +293,7 @@ static PetscErrorCode MatView_Compliance(Mat K, PetscViewer viewer)
 
 PetscErrorCode AdhComplianceMatDestroy_Private(Mat K)
 {
-  Compliance *c;
+  AdhComplianceCtx *c;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(K, &c));
@@ -305,11 +305,11 @@ PetscErrorCode AdhComplianceMatDestroy_Private(Mat K)
 
 /* The operator of a kind: of a half-space of modulus Estar (symbol NULL), or of a periodic body's
    compliance symbol. */
-static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicSymbol symbol, void *ctx, Kind kind, Mat *K)
+static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicSymbol symbol, void *ctx, AdhOperatorKind kind, Mat *K)
 {
-  const AdhBoundary boundary = kind == KIND_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
+  const AdhBoundary boundary = kind == ADH_OPERATOR_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
   static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
-  Compliance *c;
+  AdhComplianceCtx *c;
   PetscInt    ys, ym, effort = 1;
   AdhFFTWLayout      layout = ADH_FFTW_LAYOUT_AUTO;
   PetscMPIInt size;
@@ -343,8 +343,8 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicS
   c->nhalf = c->t->n0 / 2 + 1;
   nspec    = c->t->local_n1 * c->nhalf;
   PetscCall(PetscMalloc1(PetscMax(nspec, 1), &c->multiplier));
-  if (kind == KIND_FREE) PetscCall(AdhComplianceFreeMultiplier_Private(c));
-  else if (kind == KIND_PERIODIC) PetscCall(AdhCompliancePeriodicMultiplier_Private(c));
+  if (kind == ADH_OPERATOR_FREE) PetscCall(AdhComplianceFreeMultiplier_Private(c));
+  else if (kind == ADH_OPERATOR_PERIODIC) PetscCall(AdhCompliancePeriodicMultiplier_Private(c));
   else PetscCall(AdhComplianceStiffnessMultiplier_Private(c));
   PetscCall(AdhComplianceRowStatistics_Private(c));
   c->symbol     = NULL; /* the multiplier is made: the symbol's context need not outlive this call */
@@ -360,7 +360,7 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicS
   PetscCall(MatSetBlockSizes(*K, c->Nx, c->Nx)); /* a row per block, as the grid vectors */
   PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*K, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-  if (kind != KIND_PERIODIC) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
+  if (kind != ADH_OPERATOR_PERIODIC) PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetUp(*K));
 
   PetscFunctionReturn(0);
@@ -416,7 +416,7 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
-  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, boundary == ADH_BOUNDARY_FREE ? KIND_FREE : KIND_PERIODIC, K));
+  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, boundary == ADH_BOUNDARY_FREE ? ADH_OPERATOR_FREE : ADH_OPERATOR_PERIODIC, K));
   PetscFunctionReturn(0);
 }
 
@@ -454,7 +454,7 @@ PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat 
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
-  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, KIND_STIFFNESS, S));
+  PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, ADH_OPERATOR_STIFFNESS, S));
   PetscFunctionReturn(0);
 }
 
@@ -496,6 +496,6 @@ PetscErrorCode MatCreateAdhPeriodicSymbolOperator(AdhGrid grid, AdhPeriodicSymbo
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscValidFunction(symbol, 2);
   PetscValidPointer(K, 5);
-  PetscCall(CreateFFTShell(grid, 0.0, symbol, ctx, stiffness ? KIND_STIFFNESS : KIND_PERIODIC, K));
+  PetscCall(CreateFFTShell(grid, 0.0, symbol, ctx, stiffness ? ADH_OPERATOR_STIFFNESS : ADH_OPERATOR_PERIODIC, K));
   PetscFunctionReturn(0);
 }

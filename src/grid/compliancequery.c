@@ -28,8 +28,8 @@
 @*/
 PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetLambdaMin", PETSC_FALSE, &c, &mean));
@@ -64,12 +64,12 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
 @*/
 PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lambda_min)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSetLambdaMin", PETSC_FALSE, &c, &mean));
-  if (c->kind == KIND_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
+  if (c->kind == ADH_OPERATOR_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
   PetscFunctionReturn(0);
 }
@@ -96,8 +96,8 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
 @*/
 PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetGridSize", PETSC_TRUE, &c, &mean));
@@ -131,8 +131,8 @@ PetscErrorCode MatAdhComplianceGetGridSize(Mat K, PetscInt *Nx, PetscInt *Ny)
 @*/
 PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetRowNormBound", PETSC_FALSE, &c, &mean));
@@ -164,8 +164,8 @@ PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
 @*/
 PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetMultCount", PETSC_TRUE, &c, &mean));
@@ -196,8 +196,8 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
 @*/
 PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat K, PetscInt *count)
 {
-  Compliance     *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *c;
+  AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSingleMultCount", PETSC_TRUE, &c, &mean));

@@ -54,25 +54,25 @@ struct _n_AdhTransform {
 };
 
 /* What the multiplier is: the compliance (free or periodic) or the periodic stiffness. */
-typedef enum { KIND_FREE, KIND_PERIODIC, KIND_STIFFNESS } Kind;
+typedef enum { ADH_OPERATOR_FREE, ADH_OPERATOR_PERIODIC, ADH_OPERATOR_STIFFNESS } AdhOperatorKind;
 
 typedef struct {
   MPI_Comm     comm;
-  Kind         kind;
+  AdhOperatorKind kind;
   AdhBoundary  boundary;
   PetscReal    Estar, hx, hy, Lx, Ly;               /* Estar: a half-space's (0 with a symbol) */
   PetscInt     Nx, Ny;
   AdhPeriodicSymbol symbol;                           /* a periodic body's compliance C(|q|) (NULL: the half-space's), */
   void             *symbol_ctx;                       /* and its context: both used while the multiplier is made only */
   AdhTransform t;                                     /* the grid's transform of this size (shared) */
-  double      *multiplier;                            /* real kernel spectrum / (n0 n1), in the spectrum's layout (MultIndex); even in ky, so only ky = 0 .. n0/2 are kept */
+  double      *multiplier;                            /* real kernel spectrum / (n0 n1), in the spectrum's layout (AdhMultiplierIndex); even in ky, so only ky = 0 .. n0/2 are kept */
   ptrdiff_t    nhalf;                                 /* n0/2 + 1 */
   PetscReal    lambda_min, diagonal;
   PetscReal    lambda_meanfree;                       /* smallest eigenvalue on mean-free vectors */
   PetscReal    rownorm;                               /* 2-norm of a row of the circulant: bounds every row of K */
   PetscInt     nmult, nmult_single;                   /* multiplies so far, and of them in single precision */
   PetscBool    single;                                /* MatAdhComplianceMultOnSet in single precision */
-} Compliance;
+} AdhComplianceCtx;
 
 /* K + c0 (1 1^T)/N: the periodic compliance with a finite compliance c0 on the mean mode. Under
    force control the mean pressure is given, so the mean displacement can be carried by any c0 and
@@ -80,14 +80,14 @@ typedef struct {
 typedef struct {
   Mat       K;
   PetscReal c0, N;
-} MeanCompliance;
+} AdhMeanComplianceCtx;
 
 /* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
    FFTW-MPI's transposed ones. */
 typedef enum { ADH_FFTW_LAYOUT_AUTO, ADH_FFTW_LAYOUT_SERIAL, ADH_FFTW_LAYOUT_TRANSPOSED } AdhFFTWLayout;
 
 /* Where the multiplier of local kx column a and row ky = k0 <= n0/2 is kept. */
-static inline ptrdiff_t MultIndex(const Compliance *c, ptrdiff_t a, ptrdiff_t k0)
+static inline ptrdiff_t AdhMultiplierIndex(const AdhComplianceCtx *c, ptrdiff_t a, ptrdiff_t k0)
 {
   return c->t->serial ? k0 * c->t->local_n1 + a : a * c->nhalf + k0;
 }
@@ -99,18 +99,18 @@ PETSC_INTERN PetscErrorCode AdhGridGetTransform_Private(AdhGrid grid, PetscBool 
 PETSC_INTERN PetscErrorCode MatMult_AdhMeanCompliance_Private(Mat A, Vec x, Vec y);
 /* The compliance or stiffness shell behind K, with through_mean also behind a mean compliance
    (then *mean is the wrapper's context), or an error naming the caller (compliance.c). */
-PETSC_INTERN PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, Compliance **c, MeanCompliance **mean);
-PETSC_INTERN PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c);
-PETSC_INTERN PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c);
-PETSC_INTERN PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c);
-PETSC_INTERN PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c);
+PETSC_INTERN PetscErrorCode AdhComplianceGet_Private(Mat K, const char caller[], PetscBool through_mean, AdhComplianceCtx **c, AdhMeanComplianceCtx **mean);
+PETSC_INTERN PetscErrorCode AdhComplianceFreeMultiplier_Private(AdhComplianceCtx *c);
+PETSC_INTERN PetscErrorCode AdhCompliancePeriodicMultiplier_Private(AdhComplianceCtx *c);
+PETSC_INTERN PetscErrorCode AdhComplianceRowStatistics_Private(AdhComplianceCtx *c);
+PETSC_INTERN PetscErrorCode AdhComplianceStiffnessMultiplier_Private(AdhComplianceCtx *c);
 /* The free boundary's operators on the padded grid itself (padded.c): the circulant of the free
    compliance K (inverse false) or its inverse, on vectors of the padded slab layout; their
    multiplies; which local entries are the grid's points; and the moves of a grid vector into the
    physical entries of a padded one (reverse: back). */
 /* The transform array's forward FFT, the multiplier and the backward FFT, counted and logged; and
    the destroy of an operator of this context (compliance.c, shared with padded.c). */
-PETSC_INTERN PetscErrorCode AdhComplianceConvolve_Private(Mat K, Compliance *c, PetscBool single);
+PETSC_INTERN PetscErrorCode AdhComplianceConvolve_Private(Mat K, AdhComplianceCtx *c, PetscBool single);
 PETSC_INTERN PetscErrorCode AdhComplianceMatDestroy_Private(Mat K);
 PETSC_INTERN PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A);
 PETSC_INTERN PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count);

@@ -4,7 +4,7 @@
 
 PetscErrorCode MatMult_AdhMeanCompliance_Private(Mat A, Vec x, Vec y)
 {
-  MeanCompliance *m;
+  AdhMeanComplianceCtx *m;
   PetscScalar     sum;
 
   PetscFunctionBegin;
@@ -17,7 +17,7 @@ PetscErrorCode MatMult_AdhMeanCompliance_Private(Mat A, Vec x, Vec y)
 
 static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
 {
-  MeanCompliance *m;
+  AdhMeanComplianceCtx *m;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, &m));
@@ -54,7 +54,7 @@ static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
 @*/
 PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
 {
-  MeanCompliance *m;
+  AdhMeanComplianceCtx *m;
   PetscInt        nloc, N;
   DM              dm;
 

@@ -6,7 +6,7 @@
 
 /* Real kernel in the local FFTW slab: free = Love coefficients at wrapped offsets (even in both
    directions, so its spectrum is real); transformed once to give the multiplier. */
-PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c)
+PetscErrorCode AdhComplianceFreeMultiplier_Private(AdhComplianceCtx *c)
 {
   fftw_complex *spec = (fftw_complex *)c->t->data;
   ptrdiff_t     r, i, k, ncomplex = c->t->local_n1 * c->t->n0;
@@ -24,7 +24,7 @@ PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c)
   fftw_execute(c->t->forward);
   for (k = 0; k < ncomplex; k++) {
     const ptrdiff_t k0 = c->t->serial ? k / c->t->local_n1 : k % c->t->n0, a = c->t->serial ? k % c->t->local_n1 : k / c->t->n0;
-    if (k0 <= c->t->n0 / 2) c->multiplier[MultIndex(c, a, k0)] = spec[k][0] * scale;
+    if (k0 <= c->t->n0 / 2) c->multiplier[AdhMultiplierIndex(c, a, k0)] = spec[k][0] * scale;
     lmin = PetscMin(lmin, spec[k][0]);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
@@ -37,7 +37,7 @@ PetscErrorCode AdhComplianceFreeMultiplier_Private(Compliance *c)
 
 /* periodic: u_q = 2/(E* |q|) p_q with q = 2 pi (kx/Lx, ky/Ly), or a body's symbol C(|q|); the
    mean (q = 0) is left to d. */
-PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c)
+PetscErrorCode AdhCompliancePeriodicMultiplier_Private(AdhComplianceCtx *c)
 {
   ptrdiff_t a, k0;
   PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), lmin = PETSC_MAX_REAL;
@@ -50,7 +50,7 @@ PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c)
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
       const PetscReal C  = (kx == 0 && ky == 0) ? 0.0 : c->symbol ? c->symbol(c->symbol_ctx, q) : 2.0 / (c->Estar * q);
-      c->multiplier[MultIndex(c, a, k0)] = C * scale;
+      c->multiplier[AdhMultiplierIndex(c, a, k0)] = C * scale;
       if (kx || ky) lmin = PetscMin(lmin, C);
     }
   }
@@ -67,7 +67,7 @@ PetscErrorCode AdhCompliancePeriodicMultiplier_Private(Compliance *c)
    n0-ky share a value): the diagonal is the mean of the symbol, the row norm by Parseval. Every
    row of K, and every part of one, is a part of such a row (free: the padded circulant holds
    every offset of the grid). No grid vector, no multiply. */
-PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c)
+PetscErrorCode AdhComplianceRowStatistics_Private(AdhComplianceCtx *c)
 {
   ptrdiff_t a, k0;
   PetscReal sum[2] = {0.0, 0.0};
@@ -77,7 +77,7 @@ PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c)
     const ptrdiff_t kx = c->t->local_1_start + a;
     const PetscReal wx = (kx == 0 || 2 * kx == c->t->n1) ? 1.0 : 2.0;
     for (k0 = 0; k0 <= c->t->n0 / 2; k0++) {
-      const PetscReal wy = (k0 == 0 || 2 * k0 == c->t->n0) ? 1.0 : 2.0, m = c->multiplier[MultIndex(c, a, k0)];
+      const PetscReal wy = (k0 == 0 || 2 * k0 == c->t->n0) ? 1.0 : 2.0, m = c->multiplier[AdhMultiplierIndex(c, a, k0)];
       sum[0] += wx * wy * m;
       sum[1] += wx * wy * m * m;
     }
@@ -91,7 +91,7 @@ PetscErrorCode AdhComplianceRowStatistics_Private(Compliance *c)
 /* Stiffness E*|q|/2, the inverse of the periodic compliance symbol (or 1/C(|q|) of a body's
    symbol); the mean mode gets the value of the lowest nonzero wave number so the operator is
    positive definite. */
-PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c)
+PetscErrorCode AdhComplianceStiffnessMultiplier_Private(AdhComplianceCtx *c)
 {
   ptrdiff_t a, k0;
   PetscReal scale = 1.0 / ((PetscReal)c->t->n0 * (PetscReal)c->t->n1), qmin = 2.0 * PETSC_PI / PetscMax(c->Lx, c->Ly), lmin = PETSC_MAX_REAL;
@@ -105,9 +105,9 @@ PetscErrorCode AdhComplianceStiffnessMultiplier_Private(Compliance *c)
       const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
       if (c->symbol) {
         const PetscReal S = 1.0 / c->symbol(c->symbol_ctx, q);
-        c->multiplier[MultIndex(c, a, k0)] = S * scale;
+        c->multiplier[AdhMultiplierIndex(c, a, k0)] = S * scale;
         lmin = PetscMin(lmin, S);
-      } else c->multiplier[MultIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
+      } else c->multiplier[AdhMultiplierIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
     }
   }
   /* a half-space's smallest is at qmin; a body's symbol need not fall with q everywhere */

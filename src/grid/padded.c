@@ -12,7 +12,7 @@
 /* The padded rows of the vector into the transform's array (its stride), the multiplier, and back. */
 static PetscErrorCode MatMult_Padded(Mat A, Vec x, Vec y)
 {
-  Compliance        *c;
+  AdhComplianceCtx  *c;
   const PetscScalar *xa;
   PetscScalar       *ya;
   AdhTransform       t;
@@ -40,13 +40,13 @@ static PetscErrorCode MatMult_Padded(Mat A, Vec x, Vec y)
    MATSHELL on the padded slab layout, sharing the grid's padded transform with K. */
 PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A)
 {
-  Compliance     *k, *c;
-  MeanCompliance *mean;
+  AdhComplianceCtx     *k, *c;
+  AdhMeanComplianceCtx *mean;
   ptrdiff_t       nspec;
 
   PetscFunctionBegin;
   PetscCall(AdhComplianceGet_Private(K, "AdhCreatePaddedOperator_Private", PETSC_FALSE, &k, &mean));
-  PetscCheck(k->kind == KIND_FREE, k->comm, PETSC_ERR_ARG_WRONG, "The padded operators are the free compliance's");
+  PetscCheck(k->kind == ADH_OPERATOR_FREE, k->comm, PETSC_ERR_ARG_WRONG, "The padded operators are the free compliance's");
   PetscCall(PetscNew(&c));
   *c      = *k;
   c->nmult = c->nmult_single = 0;
@@ -78,7 +78,7 @@ PetscErrorCode AdhCreatePaddedOperator_Private(Mat K, PetscBool inverse, Mat *A)
 /* The multiplies a padded operator has done. */
 PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count)
 {
-  Compliance *c;
+  AdhComplianceCtx *c;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, &c));
@@ -89,7 +89,7 @@ PetscErrorCode AdhPaddedGetMultCount_Private(Mat A, PetscInt *count)
 /* Which local entries of a padded vector are the grid's points (1) and which the padding (0). */
 PetscErrorCode AdhPaddedGetPhysicalMask_Private(Mat A, char mask[])
 {
-  Compliance *c;
+  AdhComplianceCtx *c;
 
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, &c));
@@ -102,7 +102,7 @@ PetscErrorCode AdhPaddedGetPhysicalMask_Private(Mat A, char mask[])
    or (reverse) the physical entries of y into x. */
 PetscErrorCode AdhPaddedMove_Private(Mat A, Vec x, Vec y, PetscBool reverse)
 {
-  Compliance  *c;
+  AdhComplianceCtx  *c;
   AdhTransform t;
   PetscScalar *xa, *ya;
   Vec          phys;

@@ -4,7 +4,6 @@
 #ifndef ADHBEM_H
 #define ADHBEM_H
 
-#include <petscdmda.h>
 #include <petscksp.h>
 #include <petscsf.h>
 #include "adhbemversion.h"

@@ -193,7 +193,8 @@ static PyObject *py_compliance(PyObject *self, PyObject *args)
 }
 
 /* A rough surface on a fresh Nx x Ny grid, from the options under prefix (set by __init__.py).
-   The Vec keeps the grid's DMDA, so adhbem.gather(z, z) works; the grid itself is freed. */
+   The Vec has the grid's layout and block size Nx, so adhbem.gather(z, z) works; the grid itself is
+   freed. */
 static PyObject *py_rough_surface(PyObject *self, PyObject *args)
 {
   PyObject      *pycomm, *result;

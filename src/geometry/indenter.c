@@ -22,7 +22,7 @@ static PetscErrorCode TopographyToProfile(AdhTopographyKind kind, Vec h)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhIndenterFill(AdhGrid grid, AdhIndenter *ind, Vec h)
+PetscErrorCode AdhIndenterFill_Private(AdhGrid grid, AdhIndenter *ind, Vec h)
 {
   PetscScalar *ha;
   PetscInt     ys, ym, i, j;
@@ -62,7 +62,7 @@ PetscErrorCode AdhIndenterFill(AdhGrid grid, AdhIndenter *ind, Vec h)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode AdhIndenterSetFromOptions(AdhGrid grid, const char prefix[], AdhIndenter *ind)
+PetscErrorCode AdhIndenterSetFromOptions_Private(AdhGrid grid, const char prefix[], AdhIndenter *ind)
 {
   MPI_Comm  comm = grid->comm;
   PetscBool typeset = PETSC_FALSE, topo = PETSC_FALSE;

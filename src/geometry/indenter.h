@@ -1,10 +1,10 @@
-/* Indenter profiles (indenter.c). */
+/* Indenter profiles (indenter.c): the geometry layer's private header, read by the solver and the results layer. */
 #ifndef ADHBEM_INDENTER_H
 #define ADHBEM_INDENTER_H
 #include "grid/gridimpl.h"
 
 typedef enum { ADH_INDENTER_SPHERE, ADH_INDENTER_PUNCH, ADH_INDENTER_CONE, ADH_INDENTER_FILE, ADH_INDENTER_ROUGH, ADH_INDENTER_ARRAY } AdhIndenterType;
-PETSC_EXTERN const char *const AdhIndenterTypes[];
+PETSC_INTERN const char *const AdhIndenterTypes[];
 
 typedef struct {
   AdhIndenterType type;
@@ -18,8 +18,8 @@ typedef struct {
   Vec             z;            /* array: the user's topography (a reference) */
 } AdhIndenter;
 
-PETSC_EXTERN PetscErrorCode AdhIndenterSetFromOptions(AdhGrid, const char[], AdhIndenter *);
+PETSC_INTERN PetscErrorCode AdhIndenterSetFromOptions_Private(AdhGrid, const char[], AdhIndenter *);
 /* The profile h on the grid; a rough indenter's surface is generated here (its statistics are
    recorded in the indenter). */
-PETSC_EXTERN PetscErrorCode AdhIndenterFill(AdhGrid, AdhIndenter *, Vec h);
+PETSC_INTERN PetscErrorCode AdhIndenterFill_Private(AdhGrid, AdhIndenter *, Vec h);
 #endif

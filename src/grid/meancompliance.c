@@ -45,8 +45,8 @@ static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
 
   A keeps a reference to K, released when A is destroyed, has K's layout, provides `MatMult()` only, and is marked SPD.
   `MatAdhComplianceHasDirectLayout()`, `MatAdhComplianceSetSinglePrecision()` and `MatAdhComplianceMultOnSet()` accept it (they
-  act on K, the last adding the mean term); the other MatAdhComplianceGet functions need K itself. Neither the kind of K
-  nor c0 > 0 is checked.
+  act on K, the last adding the mean term); the other MatAdhComplianceGet functions need K itself. c0 must be positive and
+  finite (`PETSC_ERR_ARG_OUTOFRANGE`); the kind of K is not checked.
 
   Level: advanced
 
@@ -55,10 +55,13 @@ static PetscErrorCode MatDestroy_MeanCompliance(Mat A)
 PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
 {
   AdhMeanComplianceCtx *m;
-  PetscInt        nloc, N;
-  DM              dm;
+  PetscInt              nloc, N;
 
   PetscFunctionBegin;
+  PetscValidHeaderSpecific(K, MAT_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(K, c0, 2);
+  PetscValidPointer(A, 3);
+  PetscCheck(c0 > 0 && !PetscIsInfOrNanReal(c0), PetscObjectComm((PetscObject)K), PETSC_ERR_ARG_OUTOFRANGE, "MatCreateAdhMeanCompliance: the mean mode's compliance c0 must be positive and finite, got %g", (double)c0);
   PetscCall(PetscNew(&m));
   PetscCall(PetscObjectReference((PetscObject)K));
   m->K  = K;
@@ -69,8 +72,6 @@ PetscErrorCode MatCreateAdhMeanCompliance(Mat K, PetscReal c0, Mat *A)
   PetscCall(MatCreateShell(PetscObjectComm((PetscObject)K), nloc, nloc, N, N, m, A));
   PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_AdhMeanCompliance_Private));
   PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_MeanCompliance));
-  PetscCall(MatGetDM(K, &dm));
-  PetscCall(MatSetDM(*A, dm));
   PetscCall(MatSetOption(*A, MAT_SPD, PETSC_TRUE));
   PetscCall(MatSetUp(*A));
   PetscFunctionReturn(0);

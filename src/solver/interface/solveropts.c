@@ -117,7 +117,7 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
   PetscCall(PetscOptionsFList("-adh_elastic", "What deforms: halfspace (an elastic half-space of modulus E*, free or periodic; the default) or layer (an elastic layer of thickness -adh_layer_thickness on a rigid base, bonded or slipping, periodic; needs -adh_E1 and -adh_nu1)", "AdhSolverSetElasticType", AdhElastics.list, s->elastic_type, elastic, sizeof(elastic), &set));
   if (set) PetscCall(AdhSolverSetElasticType(s, elastic));
   PetscOptionsEnd();
-  PetscCall(AdhIndenterSetFromOptions(s->grid, s->prefix, &s->indenter));
+  PetscCall(AdhIndenterSetFromOptions_Private(s->grid, s->prefix, &s->indenter));
   for (PetscInt k = 0; k < s->npath && k < n; k++) path[k] = s->path[k]; /* shown as the default by -help */
   PetscOptionsBegin(s->comm, s->prefix, "adhbem adhesion", "AdhSolver");
   PetscCall(AdhOptionsReal("-adh_gamma", "Work of adhesion dgamma (0: non-adhesive)", "AdhSolver", s->gamma, &s->gamma, NULL));

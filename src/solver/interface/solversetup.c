@@ -234,7 +234,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PetscObjectSetName((PetscObject)s->p, "pressure"));
     PetscCall(PetscObjectSetName((PetscObject)s->g, "gap"));
     PetscCall(VecSet(s->p, 0.0));
-    PetscCall(AdhIndenterFill(s->grid, &s->indenter, s->h));
+    PetscCall(AdhIndenterFill_Private(s->grid, &s->indenter, s->h));
     if (s->gamma_file[0] && !s->gamma_field) PetscCall(LoadWorkOfAdhesionField(s));
     PetscCall(VecGetLocalSize(s->h, &nlocal));
     PetscCall(PetscCalloc1(nlocal + 1, &s->in_set));
@@ -316,7 +316,7 @@ PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind
     /* Build the new profile aside: a bad topography leaves the solver as it was. */
     PetscCall(VecDuplicate(s->h, &h));
     {
-      PetscErrorCode ierr = AdhIndenterFill(s->grid, &ind, h);
+      PetscErrorCode ierr = AdhIndenterFill_Private(s->grid, &ind, h);
       if (ierr) PetscCall(VecDestroy(&h));
       PetscCall(ierr);
     }

@@ -49,6 +49,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-n", &N, NULL));
   PetscCall(AdhGridCreate(PETSC_COMM_WORLD, &grid));
+  PetscCall(AdhGridSetFromOptions(grid)); /* -adh_fftw_planner and the other FFTW options; the sizes are set next */
   PetscCall(AdhGridSetSizes(grid, N, N, L, L));
   PetscCall(AdhGridSetUp(grid));
   PetscCall(MatCreateAdhCompliance(grid, E_star, ADH_BOUNDARY_FREE, &ctx.K));

@@ -181,7 +181,8 @@ static PyObject *py_compliance(PyObject *self, PyObject *args)
   {
     PetscErrorCode ierr;
     CatchErrorsBegin();
-    ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
+    ierr = AdhGridSetFromOptions(grid); /* the FFTW options; the sizes are the call's */
+    if (!ierr) ierr = AdhGridSetSizes(grid, (PetscInt)Nx, (PetscInt)Ny, Lx, Ly);
     if (!ierr) ierr = MatCreateAdhCompliance(grid, Estar, boundary, &K);
     CatchErrorsEnd();
     (void)AdhGridDestroy(&grid); /* also on error: no grid leaks on bad input */

@@ -308,28 +308,22 @@ PetscErrorCode AdhComplianceMatDestroy_Private(Mat K)
 static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicSymbol symbol, void *ctx, AdhOperatorKind kind, Mat *K)
 {
   const AdhBoundary boundary = kind == ADH_OPERATOR_FREE ? ADH_BOUNDARY_FREE : ADH_BOUNDARY_PERIODIC;
-  static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
-  AdhComplianceCtx *c;
-  PetscInt    ys, ym, effort = 1;
-  AdhFFTWLayout      layout = ADH_FFTW_LAYOUT_AUTO;
-  PetscMPIInt size;
-  PetscReal   timelimit = -1.0;
-  PetscBool   tlset;
-  ptrdiff_t   nspec;
+  /* the planner: the grid's own (fftw_effort, fftw_timelimit: set by the solver for its windows)
+     where it has one, else its options; an explicit -adh_fftw_timelimit wins */
+  const PetscInt      effort    = grid->fftw_effort >= 0 ? grid->fftw_effort : grid->opt_planner;
+  const PetscReal     timelimit = grid->opt_timelimit_set ? grid->opt_timelimit : grid->fftw_timelimit >= -1.0 ? grid->fftw_timelimit : -1.0;
+  const AdhFFTWLayout layout    = grid->opt_layout;
+  AdhComplianceCtx   *c;
+  PetscInt            ys, ym;
+  PetscMPIInt         size;
+  ptrdiff_t           nspec;
 
   PetscFunctionBegin;
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCheck(symbol || (Estar > 0 && !PetscIsInfOrNanReal(Estar)), grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Estar);
-  PetscOptionsBegin(grid->comm, grid->prefix, "adhbem compliance", "Mat");
-  PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "MatCreateAdhCompliance", planners, 4, planners[effort], &effort, NULL));
-  PetscCall(AdhOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "MatCreateAdhCompliance", timelimit, &timelimit, &tlset));
-  PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "MatCreateAdhCompliance", AdhFFTWLayouts, (PetscEnum)layout, (PetscEnum *)&layout, NULL));
-  PetscOptionsEnd();
   PetscCallMPI(MPI_Comm_size(grid->comm, &size));
   PetscCheck(layout != ADH_FFTW_LAYOUT_SERIAL || size == 1, grid->comm, PETSC_ERR_ARG_INCOMP, "-adh_fftw_layout serial needs one rank; on %d ranks the transforms are FFTW-MPI's (transposed)", (int)size);
-  if (grid->fftw_effort >= 0) effort = grid->fftw_effort;
-  if (!tlset && grid->fftw_timelimit >= -1.0) timelimit = grid->fftw_timelimit;
 
   PetscCall(PetscNew(&c));
   c->comm     = grid->comm;
@@ -380,12 +374,6 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicS
   Output Parameter:
 . K - the compliance
 
-  Options Database Keys:
-+ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
-. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
-- -adh_fftw_layout <auto,serial,transposed> - plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size
-                                              (and timing); several ranks always use FFTW-MPI's
-
   Notes:
   K maps the pressures p, uniform on each element, to the displacements u at the elements' centres, on the layout of
   `AdhGridCreateVector()`. With a free boundary its entries are Love's influence coefficients (`AdhLoveCoefficient()`), applied
@@ -398,9 +386,10 @@ static PetscErrorCode CreateFFTShell(AdhGrid grid, PetscReal Estar, AdhPeriodicS
   (`MatMultTranspose()` is `MatMult()`), marked SPD with a free boundary, has block size Nx, and provides `MatGetDiagonal()`
   (a constant) and an ASCII `MatView()`.
 
-  The operators of a grid share one transform of each size, planned for the first operator that asks: the options of a later
-  one do not change it. The options are read under the grid's prefix. The grid's fftw_effort, when set, wins over
-  -adh_fftw_planner; an explicit -adh_fftw_timelimit wins over the grid's fftw_timelimit. A time limit applies on one rank only
+  The operators of a grid share one transform of each size, planned for the first operator that asks, as the grid's FFTW
+  options say (-adh_fftw_planner, -adh_fftw_timelimit, -adh_fftw_layout, read by `AdhGridSetFromOptions()`; the constructor
+  reads no options). The grid's fftw_effort, when set (the solver's bounding-box windows), wins over -adh_fftw_planner; an
+  explicit -adh_fftw_timelimit wins over the grid's fftw_timelimit. A time limit applies on one rank only
   (ranks that time their own trials could take different planning paths into different collectives). Under auto, a transform
   of up to 2^22 points gets serial plans; a larger one gets the faster of the two families, timed, under a measuring planner,
   and FFTW-MPI's under estimate. Should one family fail to plan on one rank, the other is tried.
@@ -432,18 +421,12 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
   Output Parameter:
 . S - the stiffness
 
-  Options Database Keys:
-+ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
-. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
-- -adh_fftw_layout <auto,serial,transposed> - plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size
-                                              (and timing)
-
   Notes:
   The stiffness is the inverse of the periodic compliance's symbol 2/(E*|q|); the solver uses it to precondition CG on the
   contact set. The mean mode (q = 0) gets the value of the lowest nonzero wave number 2 pi/max(Lx, Ly), so S is positive
   definite (marked SPD), with smallest eigenvalue E* pi/max(Lx, Ly) (`MatAdhComplianceGetLambdaMin()`).
 
-  S is made as `MatCreateAdhCompliance()` makes K, with the same options, on the grid's Ny x Nx transform, shared with a
+  S is made as `MatCreateAdhCompliance()` makes K, planned as the grid's options say, on the grid's Ny x Nx transform, shared with a
   periodic compliance of the same grid. The MatAdhCompliance functions accept it as they accept a compliance.
 
   Level: advanced
@@ -473,11 +456,6 @@ PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat 
 
   Output Parameter:
 . K - the operator
-
-  Options Database Keys:
-+ -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort (default measure)
-. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
-- -adh_fftw_layout <auto,serial,transposed> - plans on one rank
 
   Notes:
   The operators of `MatCreateAdhCompliance()` (periodic boundary) and `MatCreateAdhPeriodicStiffness()` for a body other than

@@ -43,6 +43,9 @@ PetscErrorCode AdhGridCreate(MPI_Comm comm, AdhGrid *grid)
   g->Lx = g->Ly = 1.0;
   g->fftw_effort = -1;
   g->fftw_timelimit = -2.0;
+  g->opt_planner   = 1; /* measure */
+  g->opt_timelimit = -1.0;
+  g->opt_layout    = ADH_FFTW_LAYOUT_AUTO;
   g->row_types[0] = g->row_types[1] = MPI_DATATYPE_NULL;
   *grid = g;
   PetscFunctionReturn(0);
@@ -79,7 +82,7 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
 }
 
 /*@
-  AdhGridSetFromOptions - Sets a grid's sizes from the options database
+  AdhGridSetFromOptions - Sets a grid's sizes, and how the FFTs of its operators are planned, from the options database
 
   Collective
 
@@ -88,11 +91,17 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
 
   Options Database Keys:
 + -adh_n <N or Nx,Ny>     - the number of elements per side: one value for both sides, or two
-- -adh_size <L or Lx,Ly>  - the side lengths of the domain: one value for both sides, or two
+. -adh_size <L or Lx,Ly>  - the side lengths of the domain: one value for both sides, or two
+. -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW planner effort of the grid's operators (default measure)
+. -adh_fftw_timelimit <seconds> - how long FFTW may plan one transform on one rank (negative: no limit)
+- -adh_fftw_layout <auto,serial,transposed> - plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size
+                                              (and timing); several ranks always use FFTW-MPI's
 
   Notes:
   The options are read under the grid's options prefix (the solver's, for the grid of an `AdhSolver`); an option given without
-  a value is an error. The values are checked by `AdhGridSetUp()`.
+  a value is an error. The sizes are checked by `AdhGridSetUp()`. The operators made on the grid afterwards
+  (`MatCreateAdhCompliance()`, `MatCreateAdhPeriodicStiffness()`) plan their transforms as the FFTW options say; they read no
+  options themselves.
 
   Call it before `AdhGridSetUp()`: unlike `AdhGridSetSizes()`, it does not check that the grid is not set up yet.
 
@@ -102,6 +111,7 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
 @*/
 PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
 {
+  static const char *const planners[] = {"estimate", "measure", "patient", "exhaustive", "AdhPlanner", "", NULL};
   PetscInt  n[2], nn = 2;
   PetscReal L[2];
   PetscInt  nLi = 2;
@@ -123,6 +133,10 @@ PetscErrorCode AdhGridSetFromOptions(AdhGrid g)
     if (nLi == 1) L[1] = L[0];
     g->Lx = L[0]; g->Ly = L[1];
   }
+  PetscCall(PetscOptionsEList("-adh_fftw_planner", "FFTW planner effort", "AdhGridSetFromOptions", planners, 4, planners[g->opt_planner], &g->opt_planner, NULL));
+  PetscCall(AdhOptionsReal("-adh_fftw_timelimit", "Seconds FFTW may spend planning one transform on one rank (negative: no limit)", "AdhGridSetFromOptions", g->opt_timelimit, &g->opt_timelimit, &set));
+  if (set) g->opt_timelimit_set = PETSC_TRUE;
+  PetscCall(PetscOptionsEnum("-adh_fftw_layout", "Plans on one rank: FFTW's serial ones, FFTW-MPI's transposed ones, or chosen by size (and timing)", "AdhGridSetFromOptions", AdhFFTWLayouts, (PetscEnum)g->opt_layout, (PetscEnum *)&g->opt_layout, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }

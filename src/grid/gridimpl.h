@@ -11,6 +11,10 @@
 /* A distributed FFT of a grid's size, shared by its operators (below). */
 typedef struct _n_AdhTransform *AdhTransform;
 
+/* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
+   FFTW-MPI's transposed ones. */
+typedef enum { ADH_FFTW_LAYOUT_AUTO, ADH_FFTW_LAYOUT_SERIAL, ADH_FFTW_LAYOUT_TRANSPOSED } AdhFFTWLayout;
+
 struct _AdhGridOps {
   PetscErrorCode (*view)(AdhGrid, PetscViewer);
 };
@@ -27,6 +31,11 @@ struct _p_AdhGrid {
   const char  *prefix;         /* options prefix: the header's (PetscObjectSetOptionsPrefix), also used by the compliance */
   PetscInt     fftw_effort;    /* FFTW planner for operators on this grid: -1 from -adh_fftw_planner, 0 estimate, 1 measure, ... */
   PetscReal    fftw_timelimit; /* seconds per plan on one rank: < -1 from -adh_fftw_timelimit, -1 none */
+  /* the options of the grid's operators, read by AdhGridSetFromOptions only (never by a constructor) */
+  PetscInt      opt_planner;        /* -adh_fftw_planner: 0 estimate, 1 measure (the default), 2 patient, 3 exhaustive */
+  PetscReal     opt_timelimit;      /* -adh_fftw_timelimit, and whether it was given (it wins over fftw_timelimit) */
+  PetscBool     opt_timelimit_set;
+  AdhFFTWLayout opt_layout;         /* -adh_fftw_layout */
   AdhTransform transforms[2];  /* physical size and zero-padded (2Ny x 2Nx), made on first use */
   MPI_Datatype row_types[2];   /* one row of scalars, of chars (AdhGridGetRowType), made on first use */
 };
@@ -81,10 +90,6 @@ typedef struct {
   Mat       K;
   PetscReal c0, N;
 } AdhMeanComplianceCtx;
-
-/* Which plans a transform on one rank gets (-adh_fftw_layout); several ranks always take
-   FFTW-MPI's transposed ones. */
-typedef enum { ADH_FFTW_LAYOUT_AUTO, ADH_FFTW_LAYOUT_SERIAL, ADH_FFTW_LAYOUT_TRANSPOSED } AdhFFTWLayout;
 
 /* Where the multiplier of local kx column a and row ky = k0 <= n0/2 is kept. */
 static inline ptrdiff_t AdhMultiplierIndex(const AdhComplianceCtx *c, ptrdiff_t a, ptrdiff_t k0)

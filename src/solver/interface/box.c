@@ -41,6 +41,11 @@ static PetscErrorCode BoxGet(AdhSolver s, PetscInt bx, PetscInt by, AdhBox **box
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)b->grid, s->prefix));
   b->grid->prefix = ((PetscObject)b->grid)->prefix;
   PetscCall(AdhGridSetSizes(b->grid, bx, by, bx * s->grid->hx, by * s->grid->hy));
+  /* the solver grid's FFTW options, read once by its AdhGridSetFromOptions (a window reads none) */
+  b->grid->opt_planner       = s->grid->opt_planner;
+  b->grid->opt_timelimit     = s->grid->opt_timelimit;
+  b->grid->opt_timelimit_set = s->grid->opt_timelimit_set;
+  b->grid->opt_layout        = s->grid->opt_layout;
   /* On several ranks FFTW's measuring planner cannot be time-limited (see compliance.c), and
      unlimited measuring of every window costs more than it saves. */
   PetscCallMPI(MPI_Comm_size(s->comm, &size));

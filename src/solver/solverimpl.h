@@ -407,7 +407,10 @@ PETSC_INTERN PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver, Vec
 /* the KSP convergence test of the set's solves: full tolerance, or the certified early stop (step.c) */
 PETSC_INTERN PetscErrorCode AdhConvergedCertified_Private(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *);
 PETSC_INTERN PetscErrorCode AdhSolverSetIterate_Private(AdhSolver, Vec xC);
-PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, Vec x, PetscReal shift, Vec prof, PetscBool certify);
+/* What a solve on the contact set solves for: the pressure p of the profile h at an indentation,
+   or the set's response to a unit indentation without a profile (s->set_response, force control). */
+typedef enum { ADH_SET_SOLVE_PRESSURE, ADH_SET_SOLVE_UNIT_RESPONSE } AdhSetSolve;
+PETSC_INTERN PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver, AdhSetSolve what, PetscReal d, PetscBool certify);
 PETSC_INTERN PetscErrorCode AdhSolverDetach_Private(AdhSolver, PetscInt *);
 /* A new step, or a trial of one: no point has let go in it yet, and its largest set is the
    current one (AttachLimit). */

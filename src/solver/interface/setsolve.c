@@ -110,12 +110,17 @@ static PetscErrorCode OffSetLoad(AdhSolver s, const PetscScalar **wa)
   PetscFunctionReturn(0);
 }
 
-/* x_C from K_CC x_C = (shift - prof)_C (prof NULL: zero), warm-started from x, which is left as it
-   is off the set. With certify, the solve may stop as soon as the points to detach are certain
-   (x must then be the pressure). The pressure's solve (x = p) of a cohesive criterion also takes
-   the load of the tractions off the set: K_CC p_C = (shift - prof)_C - (K p_off)_C. */
-PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, Vec prof, PetscBool certify)
+/* x_C from K_CC x_C = (shift - prof)_C, warm-started from x, which is left as it is off the set:
+   the pressure (x = p, prof = h, shift = d) or the unit response (x = s->set_response, no
+   profile, shift = 1). With certify (the pressure at the path's indentation, displacement
+   control's), the solve may stop as soon as the points to detach, and those to join, are
+   certain. The pressure's solve of a cohesive criterion also takes the load of the tractions off
+   the set: K_CC p_C = (d - h)_C - (K p_off)_C. */
+PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, AdhSetSolve what, PetscReal d, PetscBool certify)
 {
+  const PetscBool    pressure = (PetscBool)(what == ADH_SET_SOLVE_PRESSURE);
+  const Vec          x = pressure ? s->p : s->set_response, prof = pressure ? s->h : NULL;
+  const PetscReal    shift = pressure ? d : 1.0;
   KSPConvergedReason reason;
   PetscInt           its, k;
   const PetscScalar *xa, *ha = NULL, *ta = NULL, *wa = NULL;
@@ -128,7 +133,8 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   s->certified_attach = PETSC_FALSE;
   if (!s->npoints) PetscFunctionReturn(0);
   PetscCheck(!(s->boundary == ADH_BOUNDARY_PERIODIC && s->lambda_set <= 0), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The whole periodic cell is in contact at d = %g: under displacement control the force is undetermined there (d must stay below the mean of the indenter profile, %g); use -adh_control force", (double)s->d, (double)s->mean_h);
-  if (s->crops.cohesive && x == s->p) PetscCall(OffSetLoad(s, &wa));
+  PetscCheck(x, s->comm, PETSC_ERR_PLIB, "A unit-response solve without the control's response vector");
+  if (s->crops.cohesive && pressure) PetscCall(OffSetLoad(s, &wa));
   /* The set's points are local to each rank, so restriction is a local gather. */
   PetscCall(VecGetArrayRead(x, &xa));
   if (prof) PetscCall(VecGetArrayRead(prof, &ha));
@@ -160,7 +166,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, Vec x, PetscReal shift, 
   /* the attach test of displacement control (the gap of h at s->d), where points have been
      joining lately: elsewhere (unloading) its checks would cost a multiply each for nothing; not
      griffith, whose limits come from the detach test of the converged pressure */
-  s->certify_attach = (PetscBool)(s->certify_solve && prof == s->h && shift == s->d && x == s->p && (s->joined_step || s->joined_previous) && s->attach != ADH_ATTACH_GRIFFITH);
+  s->certify_attach = (PetscBool)(s->certify_solve && pressure && d == s->d && (s->joined_step || s->joined_previous) && s->attach != ADH_ATTACH_GRIFFITH);
   s->attach_rnorm   = PETSC_MAX_REAL;
   PetscCall(KSPSetOperators(s->ksp, s->Kcc, s->Kcc));
   PetscCall(AdhSolverKSPSolve_Private(s, s->ksp, s->solve_loose, s->bC, s->pC));

@@ -34,7 +34,7 @@ static PetscErrorCode Equilibrate_Displacement(AdhSolver s, PetscReal d, PetscBo
 {
   PetscFunctionBegin;
   *none = PETSC_FALSE;
-  PetscCall(AdhSolverSolveOnSet_Private(s, s->p, d, s->h, PETSC_TRUE));
+  PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_PRESSURE, d, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 

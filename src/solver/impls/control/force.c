@@ -197,7 +197,7 @@ static PetscErrorCode Equilibrate_Force(AdhSolver s, PetscReal F, PetscBool *non
   PetscFunctionBegin;
   *none = (PetscBool)!s->npoints;
   if (*none) PetscFunctionReturn(0);
-  PetscCall(AdhSolverSolveOnSet_Private(s, s->p, f->e, s->h, PETSC_FALSE));
+  PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_PRESSURE, f->e, PETSC_FALSE));
   PetscCall(VecSum(s->p, &Fp));
   if (f->unique) {
     /* the unit response x only corrects p by de x, de = (F/A - sum p)/sum x: x needs only as
@@ -207,9 +207,9 @@ static PetscErrorCode Equilibrate_Force(AdhSolver s, PetscReal F, PetscBool *non
 
     PetscCall(KSPGetTolerances(s->ksp, &rtol, &atol, &dtol, &maxits));
     PetscCall(KSPSetTolerances(s->ksp, mismatch > 0 ? PetscMin(1e-3, PetscMax(rtol, rtol * PetscAbsReal(F / A) / mismatch)) : 1e-3, atol, dtol, maxits));
-    PetscCall(AdhSolverSolveOnSet_Private(s, f->xunit, 1.0, NULL, PETSC_FALSE));
+    PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_UNIT_RESPONSE, 0.0, PETSC_FALSE));
     PetscCall(KSPSetTolerances(s->ksp, rtol, atol, dtol, maxits));
-  } else PetscCall(AdhSolverSolveOnSet_Private(s, f->xunit, 1.0, NULL, PETSC_FALSE));
+  } else PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_UNIT_RESPONSE, 0.0, PETSC_FALSE));
   PetscCall(VecSum(f->xunit, &Fx));
   f->Fx = PetscRealPart(Fx);
   PetscCheck(f->Fx > 0, s->comm, PETSC_ERR_PLIB, "The unit-indentation response of the contact set carries no force");

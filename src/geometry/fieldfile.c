@@ -210,6 +210,8 @@ PetscErrorCode AdhFieldCheck(AdhGrid grid, const char what[], Vec v)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidCharPointer(what, 2);
+  PetscValidHeaderSpecific(v, VEC_CLASSID, 3);
   PetscCheck(grid->setup, grid->comm, PETSC_ERR_ORDER, "%s: the grid is not set up yet", what);
   PetscCall(AdhGridGetOwnership(grid, &ys, &ym));
   PetscCall(VecGetSize(v, &N));
@@ -260,6 +262,8 @@ PetscErrorCode AdhFieldLoad(AdhGrid grid, const char option[], const char path[]
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidCharPointer(option, 2);
+  PetscValidHeaderSpecific(v, VEC_CLASSID, 5);
   PetscCheck(path && path[0], grid->comm, PETSC_ERR_ARG_WRONG, "%s: no file given", option);
   PetscCall(FieldFormatOf(grid->comm, path, &format));
   PetscCheck(format != FIELD_MISSING, grid->comm, PETSC_ERR_FILE_OPEN, "%s: cannot open %s", option, path);

@@ -1,5 +1,6 @@
 /* The reduced modulus E* of two elastic bodies, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2. */
 #include "geometry/material.h"
+#include <petsc/private/petscimpl.h> /* PetscValid* */
 #include "sys/sysimpl.h"
 
 static PetscErrorCode CheckBody(MPI_Comm comm, const char *Ename, PetscReal E, const char *nuname, PetscReal nu)
@@ -77,6 +78,7 @@ PetscErrorCode AdhGetReducedModulusFromOptions(MPI_Comm comm, const char prefix[
   AdhMaterial m;
 
   PetscFunctionBegin;
+  PetscValidRealPointer(Estar, 3);
   PetscCall(PetscMemzero(&m, sizeof(m)));
   m.Estar = *Estar;
   PetscCall(AdhMaterialSetFromOptions_Private(comm, prefix, &m));

@@ -370,10 +370,13 @@ static PetscErrorCode GenerateRows(AdhGrid grid, AdhSurface *s, double **heights
 PetscErrorCode AdhSurfaceGenerate(AdhGrid grid, AdhSurface *s, Vec z)
 {
   double  *data;
-  PetscInt y0, ny, ys, ym, n, N = grid->Nx * grid->Ny;
+  PetscInt y0, ny, ys, ym, n, N;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(s, 2);
+  PetscValidHeaderSpecific(z, VEC_CLASSID, 3);
+  N = grid->Nx * grid->Ny;
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCall(VecGetSize(z, &n));
@@ -436,6 +439,9 @@ PetscErrorCode AdhSurfaceWriteHeights(AdhGrid grid, AdhSurface *s, PetscViewer v
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(s, 2);
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 3);
+  PetscValidCharPointer(name, 4);
   PetscCall(AdhInitializePackage());
   PetscCall(AdhGridSetUp(grid));
   PetscCall(GenerateRows(grid, s, &data, &y0, &ny));
@@ -470,7 +476,9 @@ PetscErrorCode AdhSurfaceView(const AdhSurface *s, PetscViewer viewer)
   PetscBool isascii;
 
   PetscFunctionBegin;
+  PetscValidPointer(s, 1);
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_WORLD;
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIPrintf(viewer, "Rough surface: self-affine Gaussian, Hurst %g, seed %" PetscInt_FMT "\n", (double)s->hurst, s->seed));

@@ -152,6 +152,7 @@ PetscErrorCode MatAdhComplianceHasDirectLayout(Mat K, PetscBool *direct)
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidBoolPointer(direct, 2);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceHasDirectLayout", PETSC_TRUE, &c, &mean));
   *direct = (PetscBool)!c->t->toFFT;
   PetscFunctionReturn(0);
@@ -231,6 +232,9 @@ PetscErrorCode MatAdhComplianceMultOnSet(Mat K, PetscInt n, const PetscInt local
   float                *fdata;
 
   PetscFunctionBegin;
+  if (n) PetscValidIntPointer(local, 3);
+  PetscValidHeaderSpecific(xC, VEC_CLASSID, 4);
+  PetscValidHeaderSpecific(yC, VEC_CLASSID, 5);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceMultOnSet", PETSC_TRUE, &c, &mean));
   PetscCheck(!c->t->toFFT, c->comm, PETSC_ERR_ARG_WRONGSTATE, "MatAdhComplianceMultOnSet needs the grid's rows to be the transform's (a periodic grid)");
   PetscCall(PetscLogEventBegin(ADH_ComplianceMult, K, xC, yC, 0));
@@ -404,6 +408,7 @@ PetscErrorCode MatCreateAdhCompliance(AdhGrid grid, PetscReal Estar, AdhBoundary
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(K, 4);
   PetscCheck(boundary == ADH_BOUNDARY_FREE || boundary == ADH_BOUNDARY_PERIODIC, grid->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_boundary: unknown boundary mode %d", (int)boundary);
   PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, boundary == ADH_BOUNDARY_FREE ? ADH_OPERATOR_FREE : ADH_OPERATOR_PERIODIC, K));
   PetscFunctionReturn(0);
@@ -437,6 +442,7 @@ PetscErrorCode MatCreateAdhPeriodicStiffness(AdhGrid grid, PetscReal Estar, Mat 
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(S, 3);
   PetscCall(CreateFFTShell(grid, Estar, NULL, NULL, ADH_OPERATOR_STIFFNESS, S));
   PetscFunctionReturn(0);
 }

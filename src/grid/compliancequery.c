@@ -32,6 +32,7 @@ PetscErrorCode MatAdhComplianceGetLambdaMin(Mat K, PetscReal *lambda_min)
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidRealPointer(lambda_min, 2);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetLambdaMin", PETSC_FALSE, &c, &mean));
   *lambda_min = c->lambda_min;
   PetscFunctionReturn(0);
@@ -68,6 +69,7 @@ PetscErrorCode MatAdhComplianceGetSetLambdaMin(Mat K, PetscInt m, PetscReal *lam
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidRealPointer(lambda_min, 3);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSetLambdaMin", PETSC_FALSE, &c, &mean));
   if (c->kind == ADH_OPERATOR_PERIODIC) *lambda_min = c->lambda_meanfree * PetscMax(0.0, 1.0 - (PetscReal)m / ((PetscReal)c->Nx * (PetscReal)c->Ny));
   else *lambda_min = c->lambda_min;
@@ -135,6 +137,7 @@ PetscErrorCode MatAdhComplianceGetRowNormBound(Mat K, PetscReal *rho)
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidRealPointer(rho, 2);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetRowNormBound", PETSC_FALSE, &c, &mean));
   *rho = c->rownorm;
   PetscFunctionReturn(0);
@@ -168,6 +171,7 @@ PetscErrorCode MatAdhComplianceGetMultCount(Mat K, PetscInt *count)
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidIntPointer(count, 2);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetMultCount", PETSC_TRUE, &c, &mean));
   *count = c->nmult;
   PetscFunctionReturn(0);
@@ -200,6 +204,7 @@ PetscErrorCode MatAdhComplianceGetSingleMultCount(Mat K, PetscInt *count)
   AdhMeanComplianceCtx *mean;
 
   PetscFunctionBegin;
+  PetscValidIntPointer(count, 2);
   PetscCall(AdhComplianceGet_Private(K, "MatAdhComplianceGetSingleMultCount", PETSC_TRUE, &c, &mean));
   *count = c->nmult_single;
   PetscFunctionReturn(0);

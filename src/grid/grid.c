@@ -76,6 +76,10 @@ PetscErrorCode AdhGridSetSizes(AdhGrid g, PetscInt Nx, PetscInt Ny, PetscReal Lx
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(g, Nx, 2);
+  PetscValidLogicalCollectiveInt(g, Ny, 3);
+  PetscValidLogicalCollectiveReal(g, Lx, 4);
+  PetscValidLogicalCollectiveReal(g, Ly, 5);
   PetscCheck(!g->setup, g->comm, PETSC_ERR_ORDER, "Cannot change the grid after AdhGridSetUp()");
   g->Nx = Nx; g->Ny = Ny; g->Lx = Lx; g->Ly = Ly;
   PetscFunctionReturn(0);
@@ -259,6 +263,7 @@ PetscErrorCode AdhGridGetRowsPerRank(AdhGrid g, PetscInt **ly)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(ly, 2);
   PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
   PetscCallMPI(MPI_Comm_size(g->comm, &size));
   PetscCall(PetscMalloc1(size, ly));
@@ -300,6 +305,8 @@ PetscErrorCode AdhGridCreateRowSF(AdhGrid g, PetscInt nrows, const PetscInt rows
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  if (nrows) PetscValidIntPointer(rows, 3);
+  PetscValidPointer(sf, 4);
   PetscCall(AdhGridGetRowsPerRank(g, &ly));
   PetscCallMPI(MPI_Comm_size(g->comm, &size));
   PetscCall(PetscMalloc1(size + 1, &start));
@@ -347,6 +354,7 @@ PetscErrorCode AdhGridGetRowType(AdhGrid g, MPI_Datatype base, MPI_Datatype *row
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(row, 3);
   PetscCheck(g->setup, g->comm, PETSC_ERR_ORDER, "AdhGridSetUp() first");
   PetscCheck(k >= 0, g->comm, PETSC_ERR_SUP, "A grid row of MPIU_SCALAR or MPI_CHAR only");
   if (g->row_types[k] == MPI_DATATYPE_NULL) {
@@ -381,6 +389,7 @@ PetscErrorCode AdhGridCreateVector(AdhGrid g, Vec *v)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
+  PetscValidPointer(v, 2);
   PetscCall(AdhGridSetUp(g));
   PetscCall(VecCreate(g->comm, v));
   PetscCall(VecSetSizes(*v, g->ym * g->Nx, g->Nx * g->Ny));
@@ -499,6 +508,7 @@ PetscErrorCode AdhGridView(AdhGrid g, PetscViewer viewer)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(g, ADH_GRID_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(g->comm, &viewer));
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
     PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)g, viewer)); /* "AdhGrid Object: (name) N MPI processes" */

@@ -223,6 +223,7 @@ PetscErrorCode AdhSolverWriteOutput(AdhSolver s, const char file[])
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidCharPointer(file, 2);
   /* the open file shares the journal and the count of rows and frames written */
   PetscCheck(!s->writer, s->comm, PETSC_ERR_ORDER, "%s is being written state by state (AdhSolverOutputBegin(), Python's iterate_path(output=...)): end it before writing another file", s->writer_file);
   ierr = AdhOutputOpen_Private(s, file, &viewer);

@@ -5,6 +5,7 @@
    a scratch solver before the check, solver/interface/types.c). The options of the solver's KSPs and PC (-adh_ksp_*, -adh_pc_*, -adh_local_ksp_*)
    are PETSc's, which reads some only during solves: they are not checked. tests/sys/test_options.py
    keeps this list equal to what -help shows. */
+#include <petsc/private/petscimpl.h> /* PetscValid* */
 #include "sys/sysimpl.h"
 
 static const char *const AdhOptionNames[] = {
@@ -40,6 +41,8 @@ static const char *const AdhOptionNames[] = {
 PetscErrorCode AdhGetOptionNames(PetscInt *n, const char *const **names)
 {
   PetscFunctionBegin;
+  PetscValidIntPointer(n, 1);
+  PetscValidPointer(names, 2);
   *n     = (PetscInt)PETSC_STATIC_ARRAY_LENGTH(AdhOptionNames);
   *names = AdhOptionNames;
   PetscFunctionReturn(0);

@@ -1,4 +1,5 @@
 /* adhbem's version, and the check that the PETSc it runs with is the one it was built against. */
+#include <petsc/private/petscimpl.h> /* PetscValid* */
 #include "sys/sysimpl.h"
 
 /*@C
@@ -25,6 +26,7 @@ PetscErrorCode AdhGetVersion(char version[], size_t len)
   char petsc[128];
 
   PetscFunctionBegin;
+  PetscValidCharPointer(version, 1);
   PetscCall(AdhGetPETScVersion_Private(petsc, sizeof(petsc)));
   PetscCall(PetscSNPrintf(version, len, "adhbem %s (PETSc %s)", ADHBEM_VERSION, petsc));
   PetscFunctionReturn(0);

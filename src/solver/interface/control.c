@@ -38,6 +38,8 @@ AdhRegistry AdhControls = {"-adh_control", "load control", NULL};
 PetscErrorCode AdhControlRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
+  PetscValidCharPointer(name, 1);
+  PetscValidFunction(create, 2);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(AdhRegistryAdd_Private(&AdhControls, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
@@ -100,6 +102,7 @@ PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(type, 2);
   *type = s->control_type;
   PetscFunctionReturn(0);
 }
@@ -191,6 +194,7 @@ PetscErrorCode AdhSolverIsPulledOff(AdhSolver s, PetscBool *pulled_off)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidBoolPointer(pulled_off, 2);
   *pulled_off = s->pulled_off;
   PetscFunctionReturn(0);
 }

@@ -41,6 +41,8 @@ AdhRegistry AdhCriteria = {"-adh_criterion", "detachment criterion", NULL};
 PetscErrorCode AdhCriterionRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
+  PetscValidCharPointer(name, 1);
+  PetscValidFunction(create, 2);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(AdhRegistryAdd_Private(&AdhCriteria, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
@@ -105,6 +107,7 @@ PetscErrorCode AdhSolverGetCriterionType(AdhSolver s, AdhCriterionType *type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(type, 2);
   *type = s->criterion_type;
   PetscFunctionReturn(0);
 }

@@ -42,6 +42,8 @@ AdhRegistry AdhElastics = {"-adh_elastic", "elastic body", NULL};
 PetscErrorCode AdhElasticRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
+  PetscValidCharPointer(name, 1);
+  PetscValidFunction(create, 2);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(AdhRegistryAdd_Private(&AdhElastics, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);

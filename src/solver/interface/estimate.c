@@ -83,13 +83,14 @@ static PetscErrorCode BytesOfRun(AdhSolver s, PetscLogDouble *per_point, PetscLo
 @*/
 PetscErrorCode AdhSolverEstimateMemory(AdhSolver s, PetscLogDouble *total, PetscLogDouble *node)
 {
-  const PetscLogDouble points = (PetscLogDouble)s->grid->Nx * (PetscLogDouble)s->grid->Ny;
-  PetscMPIInt          size, node_size;
-  MPI_Comm             shared;
-  PetscLogDouble       per_point, per_rank;
+  PetscLogDouble points;
+  PetscMPIInt    size, node_size;
+  MPI_Comm       shared;
+  PetscLogDouble per_point, per_rank;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  points = (PetscLogDouble)s->grid->Nx * (PetscLogDouble)s->grid->Ny;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared));
   PetscCallMPI(MPI_Comm_size(shared, &node_size));

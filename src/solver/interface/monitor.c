@@ -38,6 +38,8 @@ PetscErrorCode AdhSolverMonitorSet(AdhSolver s, PetscErrorCode (*monitor)(AdhSol
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidFunction(monitor, 2);
+  if (destroy) PetscValidFunction(destroy, 4);
   PetscCheck(s->nmonitors < ADH_MAX_MONITORS, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "Too many monitors (at most %d)", ADH_MAX_MONITORS);
   s->monitors[s->nmonitors]       = monitor;
   s->monitor_ctx[s->nmonitors]     = ctx;
@@ -118,6 +120,7 @@ PetscErrorCode AdhSolverMonitorDefault(AdhSolver s, PetscInt step, const AdhStat
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(st, 3);
   PetscCall(PetscTime(&now));
   left = SecondsLeft(s, now);
   if (left >= 0) PetscCall(PetscSNPrintf(text, sizeof(text), left < 10 ? "%.1f" : "%.0f", (double)left));
@@ -175,6 +178,7 @@ PetscErrorCode AdhSolverMonitor(AdhSolver s, PetscInt step, const AdhState *st)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(st, 3);
   for (PetscInt k = 0; k < s->nmonitors; k++) {
     /* a monitor that fails on one rank stops every rank, not just that one */
     int err = (int)s->monitors[k](s, step, st, s->monitor_ctx[k]);

@@ -171,6 +171,7 @@ PetscErrorCode AdhSolverComputeState(AdhSolver s, AdhState *st)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(st, 2);
   PetscCall(PetscMemzero(st, sizeof(*st)));
   PetscCall(AdhSolverGetState(s, &st->d, &st->force, &st->area, &st->contact_points, &st->outer_iterations, &st->ksp_iterations, &st->compliance_applications));
   /* the statistics' own multiplies (crack-closure's detach_ratio) count with the state */
@@ -209,6 +210,7 @@ PetscErrorCode AdhSolverRecordState(AdhSolver s, PetscLogDouble t0, AdhState *st
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(st, 3);
   PetscCall(AdhSolverComputeState(s, st));
   PetscCall(PetscTime(&t1));
   st->seconds = (PetscReal)(t1 - t0);

@@ -37,6 +37,8 @@ AdhRegistry AdhPredictors = {"-adh_predictor", "contact-set predictor", NULL};
 PetscErrorCode AdhPredictorRegister(const char name[], PetscErrorCode (*create)(AdhSolver))
 {
   PetscFunctionBegin;
+  PetscValidCharPointer(name, 1);
+  PetscValidFunction(create, 2);
   PetscCall(AdhSolverInitializePackage());
   PetscCall(AdhRegistryAdd_Private(&AdhPredictors, name, (PetscVoidFunction)create));
   PetscFunctionReturn(0);
@@ -104,6 +106,7 @@ PetscErrorCode AdhSolverGetPredictorType(AdhSolver s, AdhPredictorType *type)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(type, 2);
   *type = s->predictor_type;
   PetscFunctionReturn(0);
 }

@@ -63,6 +63,8 @@ PetscErrorCode AdhSolverEstimateResolution_Private(AdhSolver s)
 PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
 {
   PetscFunctionBegin;
+  PetscValidPointer(c, 1);
+  PetscValidIntPointer(state, 2);
   *state = -1;
   for (PetscInt k = 0; k < c->n; k++)
     if (c->state[k].force < 0 && (*state < 0 || c->state[k].force < c->state[*state].force)) *state = k;
@@ -173,6 +175,7 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(r, 2);
   PetscCall(PetscMemzero(r, sizeof(*r)));
   r->asperity_contact_radius = s->asperity_ac;
   r->asperity_tabor          = s->asperity_tabor;
@@ -235,6 +238,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(AdhSolverGetResolution(s, &r));
   if (s->curve.n && !r.touched) PetscFunctionReturn(0); /* nothing to resolve (the path warned that it never touches) */
   if (r.stopped >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: path: stopped where the surfaces came apart (state %" PetscInt_FMT ", d = %g), with legs left: -adh_stop_at_pulloff false runs them\n", r.stopped, (double)s->curve.state[r.stopped].d));

@@ -139,6 +139,7 @@ PetscErrorCode AdhSolverGetGrid(AdhSolver s, AdhGrid *grid)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(grid, 2);
   *grid = s->grid;
   PetscFunctionReturn(0);
 }
@@ -167,6 +168,7 @@ PetscErrorCode AdhSolverGetCompliance(AdhSolver s, Mat *K)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(K, 2);
   *K = s->K;
   PetscFunctionReturn(0);
 }
@@ -195,6 +197,7 @@ PetscErrorCode AdhSolverGetContactSet(AdhSolver s, IS *is)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(is, 2);
   *is = s->contact;
   PetscFunctionReturn(0);
 }
@@ -267,6 +270,7 @@ PetscErrorCode AdhSolverGetCriticalStress(AdhSolver s, PetscReal *Sigma)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidRealPointer(Sigma, 2);
   *Sigma = s->Sigma;
   PetscFunctionReturn(0);
 }
@@ -298,6 +302,7 @@ PetscErrorCode AdhSolverSetProgress(AdhSolver s, PetscReal seconds)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(s, seconds, 2);
   PetscCheck(seconds >= 0 && !PetscIsNanReal(seconds), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_progress must be >= 0 seconds, got %g", (double)seconds);
   s->progress = seconds;
   PetscFunctionReturn(0);
@@ -322,6 +327,7 @@ PetscErrorCode AdhSolverGetProgress(AdhSolver s, PetscReal *seconds)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidRealPointer(seconds, 2);
   *seconds = s->progress;
   PetscFunctionReturn(0);
 }
@@ -348,6 +354,7 @@ PetscErrorCode AdhSolverGetBoundary(AdhSolver s, AdhBoundary *boundary)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(boundary, 2);
   *boundary = s->boundary;
   PetscFunctionReturn(0);
 }
@@ -379,6 +386,7 @@ PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidPointer(curve, 2);
   *curve = &s->curve;
   PetscFunctionReturn(0);
 }

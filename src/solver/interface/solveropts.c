@@ -103,12 +103,13 @@ PetscErrorCode AdhSolverSetFromOptions(AdhSolver s)
 {
   PetscInt          n = 256;
   PetscReal         path[256];
-  PetscBool         set, certify = s->certify;
+  PetscBool         set, certify;
   char              control[64], criterion[64], predictor[64], elastic[64];
   PetscBool         monitor_set, help;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  certify = s->certify;
   PetscCall(AdhGridSetFromOptions(s->grid));
   s->material.Estar = s->Estar;
   PetscCall(AdhMaterialSetFromOptions_Private(s->comm, s->prefix, &s->material));

@@ -38,6 +38,7 @@ PetscErrorCode AdhSolverSetWorkOfAdhesionField(AdhSolver s, Vec gamma)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  PetscValidHeaderSpecific(gamma, VEC_CLASSID, 2);
   if (s->setup) PetscCall(AdhFieldCheck(s->grid, "work of adhesion field", gamma));
   PetscCall(VecMin(gamma, NULL, &min));
   PetscCheck(min >= 0, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "The work of adhesion field must be >= 0 everywhere, its minimum is %g", (double)min);
@@ -302,12 +303,14 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
 @*/
 PetscErrorCode AdhSolverSetTopography(AdhSolver s, Vec z, AdhTopographyKind kind)
 {
-  AdhIndenter ind = s->indenter;
+  AdhIndenter ind;
   Vec         h;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   PetscCheck(z, s->comm, PETSC_ERR_ARG_NULL, "AdhSolverSetTopography: no topography Vec given");
+  PetscValidHeaderSpecific(z, VEC_CLASSID, 2);
+  ind = s->indenter;
   PetscCheck(kind == ADH_TOPOGRAPHY_HEIGHT || kind == ADH_TOPOGRAPHY_GAP, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "topography kind: height or gap, got %d", (int)kind);
   ind.type = ADH_INDENTER_ARRAY;
   ind.kind = kind;

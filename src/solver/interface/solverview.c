@@ -39,11 +39,13 @@ static PetscErrorCode ViewType(PetscViewer viewer, AdhTypeOps *ops, AdhSolver s)
 PetscErrorCode AdhSolverView(AdhSolver s, PetscViewer viewer)
 {
   PetscBool   isascii;
-  const char *single = s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : "";
+  const char *single;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  single = s->cascade_single && s->boundary == ADH_BOUNDARY_PERIODIC ? " in single precision" : "";
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)s, viewer)); /* "AdhSolver Object: (name) N MPI processes" */

@@ -134,6 +134,7 @@ PetscErrorCode AdhSolverStickinessView(AdhSolver s, PetscViewer viewer)
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
   if (!st->estimated) PetscFunctionReturn(0);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(s->comm, &viewer));
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   if (st->range > 0) PetscCall(PetscSNPrintf(more, sizeof(more), ", Pastewka-Robbins %.3g, generalised Tabor %.3g", (double)st->pastewka_robbins, (double)st->tabor));
   if (st->sticks_everywhere) verdict = "sticks everywhere: flattening it costs less elastic energy than the adhesion gives, so once in contact it goes to full contact, and a compressive mean pressure is reached only in full contact (less adhesion, a stiffer solid or more roughness make a partial contact)";
   else if (st->range > 0 && st->sticky) verdict = "sticky: a finite force pulls it off, and a compressive mean pressure is reached in partial contact";

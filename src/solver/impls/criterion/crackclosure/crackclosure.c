@@ -115,7 +115,7 @@ static PetscErrorCode SetUp_CrackClosure(AdhSolver s)
 static PetscErrorCode Evaluate_CrackClosure(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio)
 {
   PetscFunctionBegin;
-  PetscCall(AdhCrackClosureRules_Private(s, detach, 0.0, removed, ratio, NULL, NULL));
+  PetscCall(AdhCrackClosureDetach_Private(s, detach, removed, ratio));
   PetscFunctionReturn(0);
 }
 
@@ -126,8 +126,8 @@ static PetscErrorCode Decide_CrackClosure(AdhSolver s, Vec xC, PetscReal perr, A
 {
   PetscFunctionBegin;
   PetscCall(AdhSolverSetIterate_Private(s, xC));
-  PetscCall(AdhCrackClosureRules_Private(s, PETSC_FALSE, perr, NULL, NULL, decision, needed));
-  /* AdhCrackClosureRules_Private left the gap of this iterate in g: an attach check, which follows only a NONE, takes it */
+  PetscCall(AdhCrackClosureDecide_Private(s, perr, decision, needed));
+  /* AdhCrackClosureDecide_Private left the gap of this iterate in g: an attach check, which follows only a NONE, takes it */
   s->gap_current = (PetscBool)(*decision == ADH_DETACH_NONE);
   PetscFunctionReturn(0);
 }

@@ -119,5 +119,7 @@ PETSC_INTERN PetscErrorCode AdhCrackClosureFrontLinks_Private(AdhSolver s, Crack
 PETSC_INTERN PetscErrorCode AdhCrackClosureEnsureInnerLinks_Private(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl);
 PETSC_INTERN PetscErrorCode AdhCrackClosureWindowMean_Private(AdhSolver s, CrackClosure *cc, PetscBool wrap, const PetscScalar **Gl, PetscInt i, PetscInt j, FrontEntry *e, PetscReal lo, PetscReal hi, PetscReal *sum, PetscReal *weights, PetscReal *margin);
 PETSC_INTERN PetscErrorCode AdhCrackClosureGriffithLimits_Private(AdhSolver s, CrackClosure *cc);
-PETSC_INTERN PetscErrorCode AdhCrackClosureRules_Private(AdhSolver s, PetscBool detach, PetscReal perr, PetscInt *removed, PetscReal *ratio, AdhDetachDecision *decision, PetscReal *needed);
+/* the detach test of the current p (rules.c), and the certified decision of an iterate's exact solution */
+PETSC_INTERN PetscErrorCode AdhCrackClosureDetach_Private(AdhSolver s, PetscBool detach, PetscInt *removed, PetscReal *ratio);
+PETSC_INTERN PetscErrorCode AdhCrackClosureDecide_Private(AdhSolver s, PetscReal perr, AdhDetachDecision *decision, PetscReal *needed);
 #endif

@@ -449,13 +449,22 @@ PETSC_INTERN PetscErrorCode AdhSolverKSPSolve_Private(AdhSolver, KSP, PetscBool 
 PETSC_INTERN PetscErrorCode AdhSolverApplyRestricted_Private(AdhSolver, Mat, PetscInt n, const PetscInt local[], VecScatter, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverCheckResources_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverStopRequested_Private(AdhSolver, PetscBool *);
-/* Inside a path: returns PETSC_ERR_SIG, without a message, once a signal asks every rank to stop;
-   the step in progress is abandoned and AdhSolverSolvePath closes the results. */
+/* A stop by signal inside a path is a state of the solver, not an error code: once every rank has
+   agreed on a signal (AdhSolverStopRequested_Private sets stop_signal), the step in progress is
+   abandoned: each part of it returns as it sees the mark, without finishing, and
+   AdhSolverSolvePath closes the results and reports the stop. AdhSolverCheckStop_Private asks
+   (collective) and returns if stopped; AdhSolverReturnIfStopped_Private only looks, after a call
+   that may have stopped. */
+#define AdhSolverStopped_Private(s) ((PetscBool)((s)->stoppable && (s)->stop_signal))
+#define AdhSolverReturnIfStopped_Private(s) \
+  do { \
+    if (AdhSolverStopped_Private(s)) PetscFunctionReturn(0); \
+  } while (0)
 #define AdhSolverCheckStop_Private(s) \
   do { \
     PetscBool stop_; \
     PetscCall(AdhSolverStopRequested_Private((s), &stop_)); \
-    if (stop_) PetscFunctionReturn(PETSC_ERR_SIG); \
+    if (stop_) PetscFunctionReturn(0); \
   } while (0)
 PETSC_INTERN void           AdhStateSetValue(AdhState *, PetscInt column, PetscReal value);
 /* the solver's package (interface/solverpackage.c), and the registration of the built-in types (impls/register.c) */

@@ -205,9 +205,9 @@ static PetscErrorCode SolveOnWindow(AdhSolver s)
   PetscCall(KSPGetConvergedReason(s->local_ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->local_ksp, &its));
   s->step_ksp += its;
-  if (s->stoppable && s->stop_signal) { /* stopped: the step is abandoned */
+  if (AdhSolverStopped_Private(s)) { /* stopped: the step is abandoned */
     PetscCall(PetscLogEventEnd(ADH_LocalSolve, 0, 0, 0, 0));
-    PetscFunctionReturn(PETSC_ERR_SIG);
+    PetscFunctionReturn(0);
   }
   PetscCheck(reason > 0, s->comm, PETSC_ERR_NOT_CONVERGED, "The local solve of -adh_cascade_local (%" PetscInt_FMT " points) at d = %g did not converge: %s after %" PetscInt_FMT " iterations (see -adh_local_ksp_max_it, -adh_local_ksp_monitor)", s->nwin, (double)s->d, KSPConvergedReasons[reason], its);
   s->step_local_solves++;
@@ -239,6 +239,7 @@ PetscErrorCode AdhSolverCascadeLocal_Private(AdhSolver s, PetscInt widened)
     PetscCall(BuildWindow(s));
     if (!s->nwin) break;
     PetscCall(SolveOnWindow(s));
+    AdhSolverReturnIfStopped_Private(s);
     if (!s->local_whole) PetscCall(PetscArrayzero(s->gone, s->nlocal));
     s->local_pending = (PetscBool)!s->local_whole;
     PetscCall(AdhSolverDetach_Private(s, &removed));

@@ -131,15 +131,15 @@ PetscErrorCode AdhSolverGetControlType(AdhSolver s, AdhControlType *type)
   leaves the bodies apart.
 
   The state is not recorded: `AdhSolverRecordState()` records it, as `AdhSolverSolvePath()` does after each step. A
-  signal that stops a running `AdhSolverSolvePath()` abandons the step, which returns `PETSC_ERR_SIG`.
+  signal that stops a running `AdhSolverSolvePath()` abandons the step: it returns at once with its state half made, not
+  to be recorded, and the path reports the stop.
 
 .seealso: `AdhSolverStart()`, `AdhSolverSolvePath()`, `AdhSolverRecordState()`, `AdhSolverGetState()`,
           `AdhSolverIsPulledOff()`, `AdhSolverSetControlType()`
 @*/
 PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
 {
-  PetscInt       mults0, mults1, ffts0, ffts1;
-  PetscErrorCode ierr;
+  PetscInt mults0, mults1, ffts0, ffts1;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
@@ -155,12 +155,11 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
     PetscCall(AdhSolverClearContact_Private(s));
   }
   PetscCall(AdhSolverBeginSetUpdates_Private(s)); /* after a pull-off, of the empty set */
-  ierr = s->cops.step(s, target);
-  if (ierr == PETSC_ERR_SIG && s->stoppable && s->stop_signal) { /* stopped by a signal: the step is abandoned */
+  PetscCall(s->cops.step(s, target));
+  if (AdhSolverStopped_Private(s)) { /* stopped by a signal: the step is abandoned, its state half made */
     PetscCall(PetscLogEventEnd(ADH_Solve, 0, 0, 0, 0));
-    PetscFunctionReturn(ierr);
+    PetscFunctionReturn(0);
   }
-  PetscCall(ierr);
   if (s->u) { /* a displacement handed out before follows the state */
     Vec u;
     PetscCall(AdhSolverGetDisplacement_Private(s, &u));

@@ -726,7 +726,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     if (clamped) restart = PETSC_TRUE;
   }
   if (gamma) PetscCall(VecRestoreArrayRead(m->surface ? m->gamma : s->gamma_field, &gamma));
-  if (stop) PetscFunctionReturn(PETSC_ERR_SIG); /* a signal asks every rank to stop: the step is abandoned */
+  if (stop) PetscFunctionReturn(0); /* a signal asks every rank to stop: the step is abandoned (stop_signal says so) */
   PetscCheck(failed != 1, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stopped at %" PetscInt_FMT " iterations (-adh_minimize_max_it) with a relative projected gradient %g (-adh_minimize_rtol %g)", force ? "the force" : "d =", (double)target, it, (double)rel, (double)s->minimize_rtol);
   PetscCheck(failed != 2, s->comm, PETSC_ERR_NOT_CONVERGED, "The energy minimisation of %s %g stalled at a relative projected gradient %g (-adh_minimize_rtol %g): no step down the gradient lowers the energy", force ? "the force" : "d =", (double)target, (double)rel, (double)s->minimize_rtol);
   /* the state: the gaps, the pressure (elastic plus mean), the contact set where the gap is 0 */
@@ -779,6 +779,7 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
   PetscFunctionBegin;
   PetscCall(VecCopy(from, s->p));
   PetscCall(MinimizeAt(s, PETSC_FALSE, d, &none));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(ForceOf(s, zone, F, apart));
   PetscFunctionReturn(0);
 }
@@ -830,6 +831,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   xa = d = s->d;
   /* the step's state at d0, minimised: it need not be a minimum (a first touch starts from p = 0) */
   PetscCall(TrialAt(s, pa, xa, zone, &F0, &apart));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(VecCopy(s->p, pa));
   tol   = 10.0 * s->minimize_rtol * PetscMax(PetscMax(PetscAbsReal(T), PetscAbsReal(F0)), dgamma > 0 ? s->crops.peak(s->crops.data, dgamma) * s->grid->hx * s->grid->hy : 0.0);
   dir   = T > F0 ? 1.0 : -1.0; /* more force: press on (d up); less: pull (d down) */
@@ -841,6 +843,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
     const PetscReal xb = xa + dir * h;
     PetscReal       Fb, rb;
     PetscCall(TrialAt(s, pa, xb, zone, &Fb, &apart));
+    AdhSolverReturnIfStopped_Private(s);
     rb = dir * (T - Fb);
     if (!apart && PetscAbsReal(rb) <= tol) {
       d     = xb;
@@ -853,6 +856,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
         const PetscReal c = (a * fb - b * fa) / (fb - fa);
         PetscReal       Fc, rc;
         PetscCall(TrialAt(s, pa, c, zone, &Fc, &apart));
+        AdhSolverReturnIfStopped_Private(s);
         rc = apart ? -PetscAbsReal(fb) : dir * (T - Fc); /* apart inside: as past T */
         if (!apart && PetscAbsReal(rc) <= tol) {
           d     = c;
@@ -873,6 +877,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
       if (jump) { /* no state on this branch carries T: it snaps through to the state past the jump */
         PetscReal Fj;
         PetscCall(TrialAt(s, pa, b, zone, &Fj, &apart));
+        AdhSolverReturnIfStopped_Private(s);
         if (apart) { /* past the jump the bodies are apart: they let go before T */
           *none = PETSC_TRUE;
           break;
@@ -914,6 +919,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
   PetscFunctionBegin;
   if (force && s->boundary == ADH_BOUNDARY_FREE) PetscCall(MinimizeForceFree(s, target, none));
   else PetscCall(MinimizeAt(s, force, target, none));
+  AdhSolverReturnIfStopped_Private(s);
   s->law_apart = *none;
   PetscFunctionReturn(0);
 }

@@ -80,7 +80,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
     s->d        = dtouch;
     s->adhesive = PETSC_FALSE;
     PetscCall(AdhSolverStep(s, target));
-    s->adhesive = PETSC_TRUE;
+    s->adhesive = PETSC_TRUE; /* also after a stop by signal: the path ends there */
   } else {
     /* Load with adhesion from first touch, where the apex points carry no load, to the target in
        -adh_steps steps. */
@@ -90,6 +90,7 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
     if (AdhSolverControlsForce_Private(s) || target > dtouch) {
       for (PetscInt k = 1; k <= s->steps; k++) {
         PetscCall(AdhSolverStep(s, t0 + (target - t0) * k / s->steps));
+        AdhSolverReturnIfStopped_Private(s);
         outer += s->step_outer; ksp += s->step_ksp; mults += s->step_mults; ffts += s->step_ffts;
         if (s->pulled_off) break;
       }
@@ -386,16 +387,20 @@ static PetscErrorCode SolvePathInner(AdhSolver s, PetscViewer viewer, PetscInt l
   } else {
     PetscCall(PetscTime(&t0));
     PetscCall(AdhSolverStart(s, s->path[0]));
+    AdhSolverReturnIfStopped_Private(s); /* the start abandoned: nothing to record */
     PetscCall(Record(s, t0, viewer));
     PetscCall(AfterRecord(s, 0, 0));
+    AdhSolverReturnIfStopped_Private(s);
   }
   for (PetscInt leg = leg0; leg < s->npath; leg++) {
     const PetscReal a = s->path[leg - 1], b = s->path[leg];
     for (PetscInt k = leg == leg0 ? step0 + 1 : 1; k <= s->steps; k++) {
       PetscCall(PetscTime(&t0));
       PetscCall(AdhSolverStep(s, a + (b - a) * k / s->steps));
+      AdhSolverReturnIfStopped_Private(s); /* the step abandoned: not recorded */
       PetscCall(Record(s, t0, viewer));
       PetscCall(AfterRecord(s, leg, k));
+      AdhSolverReturnIfStopped_Private(s);
       if (s->pulled_off) break; /* the rest of this leg has nothing in contact */
     }
     if (s->pulled_off && s->stop_at_pulloff) { /* and by default the path ends there */
@@ -539,11 +544,11 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
      failed write the file is closed as it is (FILE.part, whole to the last state written). The
      first error is the one told: a failure of the close after it is not (after a stop, it is). */
   if (viewer) {
-    const PetscBool quiet = (PetscBool)(ierr && !(ierr == PETSC_ERR_SIG && s->stop_signal));
+    const PetscBool quiet = (PetscBool)(ierr != 0);
     PetscErrorCode  aerr;
     if (quiet) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
     if (!s->output_failed) {
-      cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
+      cerr = PetscViewerHDF5WriteAttribute(viewer, "/", "complete", PETSC_BOOL, ierr || s->stop_signal ? &(PetscBool){PETSC_FALSE} : &(PetscBool){PETSC_TRUE});
       if (!cerr) cerr = AdhResults.close(s, s->output, &viewer);
     }
     aerr = AdhResults.abandon(&viewer); /* not closed (a write failed): HDF5 lets go of FILE.part as it is */
@@ -552,7 +557,7 @@ PetscErrorCode AdhSolverSolvePath(AdhSolver s)
       cerr = 0;
     } else if (!cerr) cerr = aerr;
   }
-  if (ierr == PETSC_ERR_SIG && s->stop_signal) {
+  if (!ierr && s->stop_signal) { /* the stop is the path's end: told once, as PETSc's signal error */
     char msg[3 * PETSC_MAX_PATH_LEN];
     if (!cerr) cerr = StopMessage(s, msg, sizeof(msg));
     signal(SIGTERM, term);

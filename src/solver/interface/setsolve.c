@@ -173,7 +173,7 @@ PetscErrorCode AdhSolverSolveOnSet_Private(AdhSolver s, AdhSetSolve what, PetscR
   PetscCall(KSPGetConvergedReason(s->ksp, &reason));
   PetscCall(KSPGetIterationNumber(s->ksp, &its));
   s->step_ksp += its;
-  if (s->stoppable && s->stop_signal) PetscFunctionReturn(PETSC_ERR_SIG); /* stopped: the step is abandoned */
+  AdhSolverReturnIfStopped_Private(s); /* stopped: the step is abandoned */
   PetscCall(VecGetArray(x, &xw));
   PetscCall(VecGetArrayRead(s->pC, &xa));
   for (k = 0; k < s->nset_local; k++) xw[s->set_local[k]] = xa[k];

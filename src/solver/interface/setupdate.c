@@ -25,6 +25,7 @@ PetscErrorCode AdhSolverUpdateSet_Private(AdhSolver s, PetscReal target)
     s->solve_loose = loose;
     PetscCall(s->cops.equilibrate(s, target, &none));
     s->solve_loose = PETSC_FALSE;
+    AdhSolverReturnIfStopped_Private(s);
     if (none) break; /* the set has emptied: no equilibrium carries the target */
     s->step_outer++;
     PetscCall(PetscLogEventBegin(ADH_SetUpdate, 0, 0, 0, 0));
@@ -67,6 +68,7 @@ PetscErrorCode AdhSolverUpdateSet_Private(AdhSolver s, PetscReal target)
     PetscCall(PetscLogEventEnd(ADH_SetUpdate, 0, 0, 0, 0));
     PetscCall(PetscInfo(s, "%s %g, update %" PetscInt_FMT ": %" PetscInt_FMT " KSP iterations so far%s, %" PetscInt_FMT " points let go, %" PetscInt_FMT " joined, %" PetscInt_FMT " in the set\n", what, (double)target, outer, s->step_ksp, s->certified_stop ? " (certified stop)" : s->certified_attach ? " (certified attach)" : "", removed, added, s->npoints));
     if (removed && s->cascade_local) PetscCall(AdhSolverCascadeLocal_Private(s, widened)); /* cascadelocal.c */
+    AdhSolverReturnIfStopped_Private(s);
     if (!removed && !added) break;
   }
   PetscFunctionReturn(0);

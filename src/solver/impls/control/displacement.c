@@ -49,7 +49,9 @@ static PetscErrorCode Step_Displacement(AdhSolver s, PetscReal d)
   s->joined_step = 0;
   /* without adhesion the state at d is unique: a predictor may guess its set */
   if (s->pops.predict && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->pops.predict(s, PETSC_FALSE, d));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(AdhSolverUpdateSet_Private(s, d));
+  AdhSolverReturnIfStopped_Private(s);
   s->joined_previous = s->joined_step;
   s->pulled_off      = (PetscBool)(had_contact && !s->npoints);
   PetscFunctionReturn(0);

@@ -198,6 +198,7 @@ static PetscErrorCode Equilibrate_Force(AdhSolver s, PetscReal F, PetscBool *non
   *none = (PetscBool)!s->npoints;
   if (*none) PetscFunctionReturn(0);
   PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_PRESSURE, f->e, PETSC_FALSE));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(VecSum(s->p, &Fp));
   if (f->unique) {
     /* the unit response x only corrects p by de x, de = (F/A - sum p)/sum x: x needs only as
@@ -210,6 +211,7 @@ static PetscErrorCode Equilibrate_Force(AdhSolver s, PetscReal F, PetscBool *non
     PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_UNIT_RESPONSE, 0.0, PETSC_FALSE));
     PetscCall(KSPSetTolerances(s->ksp, rtol, atol, dtol, maxits));
   } else PetscCall(AdhSolverSolveOnSet_Private(s, ADH_SET_SOLVE_UNIT_RESPONSE, 0.0, PETSC_FALSE));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(VecSum(f->xunit, &Fx));
   f->Fx = PetscRealPart(Fx);
   PetscCheck(f->Fx > 0, s->comm, PETSC_ERR_PLIB, "The unit-indentation response of the contact set carries no force");
@@ -303,7 +305,9 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
   PetscCall(SaveState(s, f, &f->previous));
   /* without adhesion the state carrying F > 0 is unique: a predictor may guess its set */
   if (s->pops.predict && F > 0 && !AdhSolverIsAdhesive_Private(s)) PetscCall(s->pops.predict(s, PETSC_TRUE, F));
+  AdhSolverReturnIfStopped_Private(s);
   PetscCall(Equilibrate(s, f, F, unique));
+  AdhSolverReturnIfStopped_Private(s);
   if (Carried(s)) PetscFunctionReturn(0);
   PetscCall(RestoreState(s, f, &f->previous));
   /* relative to the step's forces, so that a pull-off force of 0 (no adhesion) ends too */
@@ -313,6 +317,7 @@ static PetscErrorCode Step_Force(AdhSolver s, PetscReal F)
     /* each trial is a step of its own from the saved state */
     PetscCall(AdhSolverBeginSetUpdates_Private(s));
     PetscCall(Equilibrate(s, f, mid, PETSC_FALSE));
+    AdhSolverReturnIfStopped_Private(s);
     if (Carried(s)) {
       carried = mid;
       PetscCall(SaveState(s, f, &f->previous));

@@ -69,6 +69,14 @@ typedef struct {
   PetscReal mean_compliance; /* the compliance force control gives a periodic cell's mean mode, that of the longest wave */
 } AdhElasticOps;
 
+/* What every periodic body given by its compliance symbol shares (interface/periodicbody.c): its
+   operators (the free boundary refused), and the element's constants, the half-space's of modulus
+   Eref plus what the body adds within `depth` of the surface (approximate under an eighth of an
+   element: *approximate). */
+PETSC_INTERN PetscErrorCode AdhElasticPeriodicOperators_Private(AdhSolver, AdhGrid, AdhBoundary, AdhPeriodicSymbol, void *, Mat *K, Mat *S);
+PETSC_INTERN PetscErrorCode AdhElasticPeriodicConstants_Private(AdhSolver, AdhPeriodicSymbol, void *, PetscReal Eref, PetscReal depth, PetscBool *approximate);
+PETSC_INTERN PetscReal      AdhElasticCriticalStress_Private(AdhSolver, PetscReal dgamma);
+
 /* What a load control's path holds. */
 typedef enum { ADH_TARGET_INDENTATION, ADH_TARGET_FORCE } AdhTarget;
 

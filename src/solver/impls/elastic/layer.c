@@ -85,29 +85,16 @@ static PetscReal Symbol_Layer(void *ctx, PetscReal q)
   return PetscIsInfReal(l->E2) ? c : c + 2.0 * (1.0 - l->nu2 * l->nu2) / (l->E2 * q);
 }
 
-/* C(q) - 2/(E* q): the layer's factor less one, so no large terms cancel */
-static PetscReal SymbolShift_Layer(const Layer *l, PetscReal q)
-{
-  return 2.0 * (1.0 - l->nu1 * l->nu1) / (l->E1 * q) * (LayerFactor(l, q * l->T) - 1.0);
-}
-
 static PetscErrorCode CreateOperators_Layer(AdhSolver s, AdhGrid grid, AdhBoundary boundary, Mat *K, Mat *S)
 {
   PetscFunctionBegin;
-  PetscCheck(boundary == ADH_BOUNDARY_PERIODIC, s->comm, PETSC_ERR_SUP, "-adh_elastic layer: a layer's compliance is periodic only; give -adh_boundary periodic");
-  PetscCall(MatCreateAdhPeriodicSymbolOperator(grid, Symbol_Layer, s->eops.data, PETSC_FALSE, K));
-  PetscCall(MatCreateAdhPeriodicSymbolOperator(grid, Symbol_Layer, s->eops.data, PETSC_TRUE, S));
+  PetscCall(AdhElasticPeriodicOperators_Private(s, grid, boundary, Symbol_Layer, s->eops.data, K, S));
   PetscFunctionReturn(0);
 }
 
 static PetscReal Modulus_Layer(AdhSolver s, PetscReal q)
 {
   return 2.0 / (q * Symbol_Layer(s->eops.data, q));
-}
-
-static PetscReal CriticalStress_Layer(AdhSolver s, PetscReal dgamma)
-{
-  return PetscSqrtReal(s->eops.stress_per_work * dgamma);
 }
 
 static PetscErrorCode SetFromOptions_Layer(AdhSolver s, AdhOptionItems PetscOptionsObject)
@@ -121,55 +108,6 @@ static PetscErrorCode SetFromOptions_Layer(AdhSolver s, AdhOptionItems PetscOpti
   PetscFunctionReturn(0);
 }
 
-/* sin(z)/z */
-static PetscReal Sinc(PetscReal z)
-{
-  return PetscAbsReal(z) < 1e-8 ? 1.0 : PetscSinReal(z) / z;
-}
-
-/* What the layer adds to the half-space's element, from the element's own uniform unit pressure on
-   the periodic cell: at its centre, sum_q dC(q) S(q) / N, and on its average, sum_q dC(q) S(q)^2 / N,
-   with dC = C - 2/(E* q) and S the element's shape factor sinc(qx hx/2) sinc(qy hy/2), over every
-   wave vector of the cell but the mean: the grid's modes and their aliases (k + a N), as far as
-   2 q T < 80, beyond which dC is below exp(-80) of C, and |a| <= ADH_LAYER_ALIASES (there 2 q T
-   reaches 13 for T = h/8). With whole, C itself instead of dC (for a layer thinner than that: a
-   sum of positive terms on the average). This rank sums its rows of ky. */
-#define ADH_LAYER_ALIASES 8
-static PetscErrorCode ElementSums(AdhSolver s, const Layer *l, PetscBool whole, PetscReal shift[2])
-{
-  const AdhGrid  g = s->grid;
-  const PetscReal qcut = 40.0 / l->T;
-  /* the aliases reach the cut-off, at least one band around the grid's modes and at most
-     ADH_LAYER_ALIASES: for a layer thinner than an eighth of an element the sums stop short */
-  const PetscInt ax = PetscMin((PetscInt)PetscCeilReal(qcut * g->Lx / (2.0 * PETSC_PI * g->Nx)) + 1, ADH_LAYER_ALIASES), ay = PetscMin((PetscInt)PetscCeilReal(qcut * g->Ly / (2.0 * PETSC_PI * g->Ny)) + 1, ADH_LAYER_ALIASES);
-
-  PetscFunctionBegin;
-  shift[0] = shift[1] = 0.0;
-  for (PetscInt j = g->ys; j < g->ys + g->ym; j++) {
-    const PetscInt ky0 = j <= g->Ny / 2 ? j : j - g->Ny;
-    for (PetscInt b = -ay; b <= ay; b++) {
-      const PetscReal qy = 2.0 * PETSC_PI * (ky0 + b * g->Ny) / g->Ly;
-      if (PetscAbsReal(qy) > qcut) continue;
-      for (PetscInt i = 0; i < g->Nx; i++) {
-        const PetscInt kx0 = i <= g->Nx / 2 ? i : i - g->Nx;
-        for (PetscInt a = -ax; a <= ax; a++) {
-          const PetscReal qx = 2.0 * PETSC_PI * (kx0 + a * g->Nx) / g->Lx, q = PetscSqrtReal(qx * qx + qy * qy);
-          PetscReal       dC, S;
-          if (q > qcut || q == 0.0) continue;
-          dC = whole ? Symbol_Layer((void *)l, q) : SymbolShift_Layer(l, q);
-          S  = Sinc(0.5 * qx * g->hx) * Sinc(0.5 * qy * g->hy);
-          shift[0] += dC * S;
-          shift[1] += dC * S * S;
-        }
-      }
-    }
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, shift, 2, MPIU_REAL, MPIU_SUM, s->comm));
-  shift[0] /= (PetscReal)g->Nx * (PetscReal)g->Ny;
-  shift[1] /= (PetscReal)g->Nx * (PetscReal)g->Ny;
-  PetscFunctionReturn(0);
-}
-
 /* The solids' constants, and the element's self-compliance and self-energy: the half-space's of E*
    and what the layer adds. */
 static PetscErrorCode SetUp_Layer(AdhSolver s)
@@ -177,7 +115,6 @@ static PetscErrorCode SetUp_Layer(AdhSolver s)
   Layer             *l = (Layer *)s->eops.data;
   const AdhGrid      g = s->grid;
   const AdhMaterial *m = &s->material;
-  PetscReal          shift[2];
 
   PetscFunctionBegin;
   PetscCheck(l->T > 0, s->comm, PETSC_ERR_USER_INPUT, "-adh_elastic layer needs the thickness: give -adh_layer_thickness T (> 0)");
@@ -185,20 +122,8 @@ static PetscErrorCode SetUp_Layer(AdhSolver s)
   PetscCheck(m->solids, s->comm, PETSC_ERR_USER_INPUT, "-adh_elastic layer needs the layer's own constants: give -adh_E1 E and -adh_nu1 NU (E* alone, -adh_E_star, does not fix a layer's stiffness)");
   PetscCheck(m->nu1 >= 0.0 && m->nu1 <= 0.5, s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_nu1: the layer's Poisson ratio must lie in [0, 0.5], got %g", (double)m->nu1);
   l->E1 = m->E1; l->nu1 = m->nu1; l->E2 = m->E2; l->nu2 = m->nu2;
-  l->thin = (PetscBool)(8.0 * l->T < PetscMin(g->hx, g->hy));
-  PetscCall(ElementSums(s, l, l->thin, shift));
-  /* U_el = sigma^2 A (chi/(A E*) + shift/2): the energy of the element's load over its own displacement */
-  if (l->thin) {
-    s->eops.self_compliance = shift[0];
-    s->eops.chi_per_area    = 0.5 * shift[1];
-  } else {
-    s->eops.self_compliance = AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar) + shift[0];
-    s->eops.chi_per_area    = AdhChi(g->hx, g->hy) / (g->hx * g->hy * s->Estar) + 0.5 * shift[1];
-  }
-  l->ratio                = s->eops.self_compliance / AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
-  PetscCheck(s->eops.self_compliance > 0 && s->eops.chi_per_area > 0, s->comm, PETSC_ERR_PLIB, "-adh_elastic layer: the element's self-compliance %g or self-energy %g is not positive", (double)s->eops.self_compliance, (double)s->eops.chi_per_area);
-  s->eops.stress_per_work = 1.0 / s->eops.chi_per_area;
-  s->eops.mean_compliance = Symbol_Layer(l, 2.0 * PETSC_PI / PetscMax(g->Lx, g->Ly));
+  PetscCall(AdhElasticPeriodicConstants_Private(s, Symbol_Layer, l, s->Estar, l->T, &l->thin));
+  l->ratio = s->eops.self_compliance / AdhLoveCoefficient(0.0, 0.0, g->hx, g->hy, s->Estar);
   PetscFunctionReturn(0);
 }
 
@@ -261,7 +186,7 @@ PETSC_INTERN PetscErrorCode AdhElasticCreate_Layer(AdhSolver s)
   s->eops.periodic_only       = PETSC_TRUE;
   s->eops.create_operators    = CreateOperators_Layer;
   s->eops.modulus             = Modulus_Layer;
-  s->eops.critical_stress     = CriticalStress_Layer;
+  s->eops.critical_stress     = AdhElasticCriticalStress_Private;
   s->eops.base.setfromoptions = SetFromOptions_Layer;
   s->eops.base.setup          = SetUp_Layer;
   s->eops.base.shape          = Shape_Layer;

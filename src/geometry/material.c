@@ -25,7 +25,8 @@ PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm comm, const char prefi
   PetscCall(AdhOptionsReal("-adh_E2", "Young's modulus of body 2, the indenter (default inf: rigid)", "", E2, &E2, &setE2));
   PetscCall(AdhOptionsReal("-adh_nu2", "Poisson ratio of body 2", "", nu2, &nu2, &setnu2));
   PetscOptionsEnd();
-  m->solids = PETSC_FALSE;
+  m->solids  = PETSC_FALSE;
+  m->nu1_set = PETSC_FALSE;
   if (setE1 || setE2 || setnu1 || setnu2) {
     PetscReal compliance = 0.0;
     PetscCheck(!setEs, comm, PETSC_ERR_ARG_INCOMP, "-adh_E_star cannot be combined with -adh_E1/-adh_nu1/-adh_E2/-adh_nu2");
@@ -39,6 +40,7 @@ PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm comm, const char prefi
     Es        = 1.0 / compliance;
     m->solids = PETSC_TRUE;
     m->E1 = E1; m->nu1 = nu1; m->E2 = E2; m->nu2 = nu2;
+    m->nu1_set = setnu1;
   }
   PetscCheck(Es > 0 && !PetscIsInfOrNanReal(Es), comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_E_star: the reduced modulus must be positive and finite, got %g", (double)Es);
   m->Estar = Es;

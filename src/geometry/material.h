@@ -10,6 +10,7 @@ typedef struct {
   PetscReal E1, nu1;  /* body 1 (the substrate or layer) */
   PetscReal E2, nu2;  /* body 2 (the indenter; E2 infinite: rigid) */
   PetscBool solids;   /* E1 (and so nu1, E2, nu2) were given; else E* alone */
+  PetscBool nu1_set;  /* -adh_nu1 was given (a layer's stiffness depends on it beyond E*) */
 } AdhMaterial;
 
 PETSC_INTERN PetscErrorCode AdhMaterialSetFromOptions_Private(MPI_Comm, const char prefix[], AdhMaterial *);

@@ -479,6 +479,7 @@ PetscErrorCode MatCreateAdhPeriodicSymbolOperator(AdhGrid grid, AdhPeriodicSymbo
   PetscFunctionBegin;
   PetscValidHeaderSpecific(grid, ADH_GRID_CLASSID, 1);
   PetscValidFunction(symbol, 2);
+  PetscValidLogicalCollectiveBool(grid, stiffness, 4);
   PetscValidPointer(K, 5);
   PetscCall(CreateFFTShell(grid, 0.0, symbol, ctx, stiffness ? ADH_OPERATOR_STIFFNESS : ADH_OPERATOR_PERIODIC, K));
   PetscFunctionReturn(0);

@@ -51,10 +51,11 @@ PetscErrorCode AdhCompliancePeriodicMultiplier_Private(AdhComplianceCtx *c)
       const PetscReal q  = PetscSqrtReal(qx * qx + qy * qy);
       const PetscReal C  = (kx == 0 && ky == 0) ? 0.0 : c->symbol ? c->symbol(c->symbol_ctx, q) : 2.0 / (c->Estar * q);
       c->multiplier[AdhMultiplierIndex(c, a, k0)] = C * scale;
-      if (kx || ky) lmin = PetscMin(lmin, C);
+      if (kx || ky) lmin = (C > 0 && !PetscIsInfOrNanReal(C)) ? PetscMin(lmin, C) : -1.0; /* a bad symbol: told by every rank below */
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
+  PetscCheck(lmin > 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "The body's compliance symbol is not positive and finite at every wave number of the cell");
   /* The constant vector is in K's null space, so no positive bound holds for K itself; on
      mean-free vectors the smallest eigenvalue is the symbol at the largest wave number. */
   c->lambda_min      = 0.0;
@@ -104,14 +105,15 @@ PetscErrorCode AdhComplianceStiffnessMultiplier_Private(AdhComplianceCtx *c)
       const PetscReal qx = 2.0 * PETSC_PI * kx / c->Lx, qy = 2.0 * PETSC_PI * ky / c->Ly;
       const PetscReal q  = (kx == 0 && ky == 0) ? qmin : PetscSqrtReal(qx * qx + qy * qy);
       if (c->symbol) {
-        const PetscReal S = 1.0 / c->symbol(c->symbol_ctx, q);
+        const PetscReal C = c->symbol(c->symbol_ctx, q), S = 1.0 / C;
         c->multiplier[AdhMultiplierIndex(c, a, k0)] = S * scale;
-        lmin = PetscMin(lmin, S);
+        lmin = (C > 0 && !PetscIsInfOrNanReal(C)) ? PetscMin(lmin, S) : -1.0;
       } else c->multiplier[AdhMultiplierIndex(c, a, k0)] = 0.5 * c->Estar * q * scale;
     }
   }
   /* a half-space's smallest is at qmin; a body's symbol need not fall with q everywhere */
   if (c->symbol) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lmin, 1, MPIU_REAL, MPIU_MIN, c->comm));
+  PetscCheck(!c->symbol || lmin > 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "The body's compliance symbol is not positive and finite at every wave number of the cell");
   c->lambda_min = c->symbol ? lmin : 0.5 * c->Estar * qmin;
   PetscFunctionReturn(0);
 }

@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include "results/resultsimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 8 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back); 8: the curve's contact_perimeter and cohesive_perimeter */
+#define ADH_CHECKPOINT_VERSION 9 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back); 8: the curve's contact_perimeter and cohesive_perimeter; 9: the elastic body (-adh_elastic) and its options */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -62,6 +62,7 @@ static PetscInt Shapes(AdhSolver s, Shape shape[ADH_MAX_SHAPES], PetscInt *Nx, P
     AdhSolverGetTypeOps_Private(s, ops, NULL, NULL);
     if (!ops[k]->shape) continue;
     PetscCallAbort(PETSC_COMM_SELF, ops[k]->shape(s, &m, typed));
+    if (m > ADH_MAX_TYPE_SHAPES) PetscCallAbort(PETSC_COMM_SELF, PETSC_ERR_PLIB); /* a type's shape op wrote past ADH_MAX_TYPE_SHAPES */
     for (PetscInt j = 0; j < m; j++) shape[n++] = (Shape){typed[j].option, typed[j].type, typed[j].value, typed[j].absent};
   }
   return n;

@@ -26,7 +26,7 @@ typedef struct {
   const void   *value;
   const void   *absent; /* the value of a checkpoint written before the option existed (NULL: this run's) */
 } AdhShapingOption;
-#define ADH_MAX_TYPE_SHAPES 6
+#define ADH_MAX_TYPE_SHAPES 8 /* a type's shape op fills at most this many (checkpoint.c checks) */
 
 /* What every type of the solver's four kinds (elastic body, criterion, control, predictor) may do besides its
    kind's work, as PETSc's types do (KSPSetFromOptions_CG, KSPView_CG). Each may be NULL. The
@@ -47,8 +47,10 @@ typedef struct {
 
 /* What an elastic body does (impls/elastic/): it makes the compliance (and the periodic stiffness
    that preconditions the solves) and gives the solver every elastic constant it needs, so that no
-   half-space closed form is used outside the body's file. Its setup runs first of the solver's
-   set-up, before the operators are made, and fills in the constants below. */
+   half-space closed form is used outside the body's files. Its setup runs first of the solver's
+   set-up, before the operators are made, and fills in the constants below (the solver checks
+   them). The half-space's closed forms live in the body's files: impls/elastic/ and, for the
+   periodic bodies given by a symbol, interface/periodicbody.c. */
 typedef struct {
   AdhTypeOps base;
   void      *data;

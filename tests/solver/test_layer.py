@@ -231,6 +231,7 @@ def test_attributes_and_restart_refusal(tmp_path):
     (dict(layer_thickness=0.0), "-adh_layer_thickness"),
     (dict(layer_thickness=-0.1), "-adh_layer_thickness"),
     (dict(nu1=-0.1), "-adh_nu1"),
+    (dict(nu1=None), "needs the layer's Poisson ratio: give -adh_nu1"),
     (dict(nu1=0.6), "-adh_nu1"),
     (dict(E1=None, E_star=1.0), "-adh_E1"),
     (dict(layer_base="glued"), "-adh_layer_base"),
@@ -245,3 +246,59 @@ def test_bad_input(options, words):
         with adhbem.Solver(**opts) as s:
             s.solve_path()
     assert words in str(e.value), str(e.value)
+
+
+def view_ratio(T, n=32):
+    """The layer's element self-compliance over the half-space's, as -adh_view prints it."""
+    import re
+    r = subprocess.run([EXE, "-adh_n", str(n), "-adh_boundary", "periodic", "-adh_elastic", "layer", "-adh_layer_thickness", repr(T),
+                        "-adh_E1", "1", "-adh_nu1", "0.3", "-adh_gamma", "1e-4", "-adh_path", "0,0.001", "-adh_steps", "1",
+                        "-adh_view"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr[-1500:]
+    m = re.search(r"the element's self-compliance ([0-9.eE+-]+) times the half-space's", r.stdout)
+    assert m, r.stdout[-2000:]
+    return float(m.group(1)), "approximate" in r.stdout
+
+
+def test_element_constants_are_continuous_in_the_thickness():
+    """The element's self-compliance on a 32^2 cell across a grid spacing, where its formula changes
+    (h (1 - 1e-6) against h (1 + 1e-6): within 1e-5), and it falls with the thickness towards the
+    thin limit, positive (h/8, h/64)."""
+    serial_only()
+    h = 1.0 / 32
+    below, approx_below = view_ratio(h * (1 - 1e-6))
+    above, approx_above = view_ratio(h * (1 + 1e-6))
+    say(f"\nself-compliance over the half-space's at h (1 -+ 1e-6): {below:.6f} / {above:.6f}")
+    assert approx_below and not approx_above
+    assert abs(below / above - 1) < 1e-5
+    thin = [view_ratio(h * f)[0] for f in (0.5, 0.125, 1 / 64)]
+    assert above > thin[0] > thin[1] > thin[2] > 0
+
+
+def test_resolution_estimate_on_a_thin_incompressible_layer():
+    """The JKR radius the resolution report estimates on a thin incompressible layer is the root of
+    a = (9 pi dgamma R^2 / (8 E(1/a)))^(1/3), E(q) = 2 / (q C(q)), found here by bisection (the
+    fixed point of that map cycles there)."""
+    serial_only()
+    import re
+    n, T, dgamma = 64, 0.01, 5e-4
+    r = subprocess.run([EXE, "-adh_n", str(n), "-adh_boundary", "periodic", "-adh_elastic", "layer", "-adh_layer_thickness", repr(T),
+                        "-adh_E1", "1", "-adh_nu1", "0.5", "-adh_gamma", repr(dgamma), "-adh_path", "0,0.001", "-adh_steps", "1",
+                        "-adh_view"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr[-1500:]
+    got = float(re.search(r"JKR contact radius of the smallest asperities \(estimate\) over the grid spacing: ([0-9.eE+-]+)", r.stdout).group(1))
+
+    def excess(E):
+        a = (9 * math.pi * dgamma / (8 * E)) ** (1 / 3)
+        q, t = 1 / a, T / a
+        C = 2 * 0.75 / q * (math.sinh(2 * t) - 2 * t) / (math.cosh(2 * t) + 2 * t * t + 1)
+        return E - 2 / (q * C)
+    lo, hi = 4 / 3, 4 / 3
+    while excess(hi) < 0:
+        hi *= 2
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if excess(mid) < 0 else (lo, mid)
+    want = (9 * math.pi * dgamma / (8 * lo)) ** (1 / 3) * n
+    say(f"\nthin incompressible layer: JKR radius {got:.5g} spacings, the root {want:.5g}")
+    assert abs(got / want - 1) < 1e-5

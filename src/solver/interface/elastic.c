@@ -121,17 +121,29 @@ void AdhSolverGetTypeOps_Private(AdhSolver s, AdhTypeOps *ops[ADH_NUM_KINDS], Ad
   }
 }
 
+/* The excess of a modulus E over the body's at the wave number 1/a of the JKR radius a it gives. */
+static PetscReal SummitExcess(AdhSolver s, PetscReal R, PetscReal dgamma, PetscReal E)
+{
+  const PetscReal a = PetscCbrtReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * E));
+  return E - s->eops.modulus(s, 1.0 / a);
+}
+
 /* A JKR contact's radius a = (9 pi dgamma R^2 / (8 E))^(1/3) with E the body's modulus at the wave
-   number 1/a, found by a few fixed-point passes (the half-space's E* needs none). */
+   number 1/a (the half-space's E* needs no search). The excess grows with E (a stiffer guess, a
+   smaller contact, a modulus nearer the half-space's): bisected in log E between a bracket
+   widened by factors of 2 (a fixed point cycles where the modulus goes as a^-3, on a thin
+   incompressible layer), to 1e-6. */
 PetscReal AdhSolverSummitModulus_Private(AdhSolver s, PetscReal R, PetscReal dgamma)
 {
-  PetscReal E = s->Estar;
+  PetscReal lo = s->Estar, hi = s->Estar;
 
-  if (s->eops.halfspace || !(R > 0) || !(dgamma > 0)) return E;
-  for (PetscInt it = 0; it < 20; it++) {
-    const PetscReal a = PetscCbrtReal(9.0 * PETSC_PI * dgamma * R * R / (8.0 * E)), Enew = s->eops.modulus(s, 1.0 / a);
-    if (PetscAbsReal(Enew - E) <= 1e-6 * E) return Enew;
-    E = Enew;
+  if (s->eops.halfspace || !(R > 0) || !(dgamma > 0)) return s->Estar;
+  for (PetscInt k = 0; k < 200 && SummitExcess(s, R, dgamma, lo) > 0; k++) lo *= 0.5;
+  for (PetscInt k = 0; k < 200 && SummitExcess(s, R, dgamma, hi) < 0; k++) hi *= 2.0;
+  for (PetscInt it = 0; it < 100 && hi > lo * (1.0 + 1e-6); it++) {
+    const PetscReal mid = PetscSqrtReal(lo * hi);
+    if (SummitExcess(s, R, dgamma, mid) < 0) lo = mid;
+    else hi = mid;
   }
-  return E;
+  return PetscSqrtReal(lo * hi);
 }

@@ -252,7 +252,7 @@ PetscErrorCode AdhSolverGetFields(AdhSolver s, Vec *p, Vec *u, Vec *g, Vec *h, V
 . s - the solver
 
   Output Parameter:
-. Sigma - the mesh-dependent Sigma = sqrt(hx hy E* dgamma / chi) (Pohrt & Popov eq. 13), or the stress fixed by
+. Sigma - the mesh-dependent Sigma = sqrt(hx hy E* dgamma / chi) (Pohrt & Popov eq. 13; the elastic body's element self-energy chi), or the stress fixed by
           -adh_critical_stress
 
   Level: intermediate

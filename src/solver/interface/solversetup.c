@@ -19,7 +19,7 @@
   Level: intermediate
 
   Notes:
-  The critical stress becomes the field Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi), unless -adh_critical_stress
+  The critical stress becomes the field Sigma(x,y) = sqrt(hx hy E* dgamma(x,y) / chi) (on a half-space; the body's chi otherwise), unless -adh_critical_stress
   fixes it. The scalar -adh_gamma still gives the Sigma of `AdhSolverGetCriticalStress()`, for reports. The field
   replaces one read from -adh_gamma_field.
 
@@ -113,7 +113,7 @@ PetscErrorCode AdhSolverGetCriticalStressVec_Private(AdhSolver s, Vec *Sigma)
   PetscFunctionReturn(0);
 }
 
-/* The Fourier preconditioner: z = R S R^T r, with S the periodic stiffness E*|q|/2 on the grid
+/* The Fourier preconditioner: z = R S R^T r, with S the body's periodic stiffness (E*|q|/2 on a half-space) on the grid
    (or on the bounding-box window) and R the restriction to the contact set. */
 static PetscErrorCode PCApply_Fourier(PC pc, Vec r, Vec z)
 {
@@ -170,19 +170,18 @@ static PetscErrorCode WarnFreeTopography(AdhSolver s)
 . s - the solver
 
   Options Database Keys:
-+ -adh_ksp_rtol <1e-10>                                   - the relative tolerance of the CG solves on the contact set
-. -adh_ksp_max_it <100000>                                - their largest number of iterations
-. -adh_fftw_planner <estimate,measure,patient,exhaustive> - FFTW's planner (default measure)
-. -adh_fftw_timelimit <seconds>                           - the seconds FFTW may spend planning one transform on one rank
-- -adh_fftw_layout <auto,serial,transposed>               - the plans on one rank
++ -adh_ksp_rtol <1e-10>    - the relative tolerance of the CG solves on the contact set
+- -adh_ksp_max_it <100000> - their largest number of iterations
 
   Level: beginner
 
   Notes:
   Set-up only creates: the contact set belongs to the step, and is empty after set-up. `AdhSolverStart()`,
   `AdhSolverStep()` and `AdhSolverSolvePath()` call it, so calling it is optional. The first call does the work; every
-  call, the first included, computes the critical stress Sigma from dgamma, E* and the grid, or takes the stress of
-  -adh_critical_stress.
+  call, the first included, computes the critical stress Sigma from dgamma and the elastic body's element (E* and the
+  grid on a half-space), or takes the stress of -adh_critical_stress. The FFTW options (-adh_fftw_planner and the others)
+  are the grid's, read by `AdhSolverSetFromOptions()` through `AdhGridSetFromOptions()`; the first call plans the
+  transforms with them.
 
   The first call also refuses misspelled -adh_ options; chooses the defaults that depend on other settings (the
   attach rule the criterion pairs with, unless one was chosen: griffith with crack-closure, reach with pohrt-popov,
@@ -193,7 +192,7 @@ static PetscErrorCode WarnFreeTopography(AdhSolver s)
   criterion.
 
   The KSP is CG with a nonzero initial guess, the unpreconditioned residual norm, an absolute tolerance of 0 and a
-  shell preconditioner, the periodic stiffness E*|q|/2 restricted to the contact set. Its options prefix is the
+  shell preconditioner, the body's periodic stiffness (E*|q|/2 on a half-space) restricted to the contact set. Its options prefix is the
   solver's followed by adh_, and its options are read here (-adh_ksp_ and -adh_pc_ options it does not read are
   refused).
 
@@ -226,7 +225,12 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(AdhGridSetUp(s->grid));
     /* the body first: its constants and its operators */
     PetscCheck(!(s->eops.periodic_only && s->boundary == ADH_BOUNDARY_FREE), s->comm, PETSC_ERR_ARG_INCOMP, "-adh_elastic %s is a periodic cell only; give -adh_boundary periodic (the free boundary is a half-space's)", s->elastic_type);
+    PetscCheck(s->eops.create_operators && s->eops.modulus && s->eops.critical_stress, s->comm, PETSC_ERR_PLIB, "-adh_elastic %s: the body's create function must set create_operators, modulus and critical_stress", s->elastic_type);
     if (s->eops.base.setup) PetscCall(s->eops.base.setup(s));
+    {
+      const PetscReal c[4] = {s->eops.self_compliance, s->eops.chi_per_area, s->eops.stress_per_work, s->eops.mean_compliance};
+      for (PetscInt k = 0; k < 4; k++) PetscCheck(c[k] > 0 && !PetscIsInfOrNanReal(c[k]), s->comm, PETSC_ERR_PLIB, "-adh_elastic %s: the body's set-up left its element's constants unset or not positive (self-compliance %g, chi per area %g, stress per work %g, mean compliance %g)", s->elastic_type, (double)c[0], (double)c[1], (double)c[2], (double)c[3]);
+    }
     PetscCall(s->eops.create_operators(s, s->grid, s->boundary, &s->K, &s->S));
     PetscCall(AdhGridCreateVector(s->grid, &s->h));
     PetscCall(VecDuplicate(s->h, &s->p));
@@ -258,7 +262,7 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     PetscCall(PCSetType(pc, PCSHELL));
     PetscCall(PCShellSetContext(pc, s));
     PetscCall(PCShellSetApply(pc, PCApply_Fourier));
-    PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: periodic stiffness E*|q|/2 restricted to the contact set"));
+    PetscCall(PCShellSetName(pc, "adhbem Fourier preconditioner: the body's periodic stiffness (E*|q|/2 on a half-space) restricted to the contact set"));
     PetscCall(KSPSetConvergenceTest(s->ksp, AdhConvergedCertified_Private, s, NULL));
     PetscCall(KSPSetFromOptions(s->ksp));
     PetscCall(AdhCheckKSPOptions_Private(s->ksp, s->prefix, "adh_"));

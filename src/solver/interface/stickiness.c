@@ -52,7 +52,7 @@ PetscErrorCode AdhSolverEstimateStickiness_Private(AdhSolver s)
   st->sticks_everywhere = (PetscBool)(st->persson_tosatti < 1);
   if (s->crops.range) {
     /* the body's modulus at the roughness's wave number h''_rms/h'_rms (E* on a half-space) */
-    const PetscReal dr = s->crops.range(s, dgamma), h1 = st->rms_slope, E = s->eops.halfspace ? s->Estar : s->eops.modulus(s, st->rms_curvature / h1);
+    const PetscReal dr = s->crops.range(s, dgamma), h1 = st->rms_slope, E = s->eops.modulus(s, st->rms_curvature / h1);
     st->range            = dr;
     st->pastewka_robbins = h1 * E * dr / (2.0 * dgamma) * PetscPowReal(h1 * h1 / (st->rms_curvature * dr), 2.0 / 3.0);
     st->tabor            = PetscCbrtReal(dgamma * dgamma / (st->rms_curvature * E * E * dr * dr * dr));

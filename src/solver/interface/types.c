@@ -57,6 +57,8 @@ PetscErrorCode AdhSolverReadTypesOptions_Private(AdhSolver s)
   PetscFunctionBegin;
   PetscCall(AdhSolverCreate(s->comm, &scratch));
   PetscCall(AdhSolverSetOptionsPrefix(scratch, s->prefix));
+  /* the kinds' setters, in the order of AdhSolverGetTypeOps_Private */
+  PetscErrorCode (*const set[ADH_NUM_KINDS])(AdhSolver, const char[]) = {AdhSolverSetElasticType, AdhSolverSetCriterionType, AdhSolverSetControlType, AdhSolverSetPredictorType};
   for (PetscInt k = 0; k < ADH_NUM_KINDS; k++) {
     AdhRegistry *regs[ADH_NUM_KINDS];
     AdhTypeOps  *ops[ADH_NUM_KINDS];
@@ -66,10 +68,7 @@ PetscErrorCode AdhSolverReadTypesOptions_Private(AdhSolver s)
     AdhSolverGetTypeOps_Private(scratch, ops, regs, NULL);
     PetscCall(AdhRegistryGetNames_Private(regs[k], &n, &names));
     for (PetscInt t = 0; t < n; t++) {
-      if (k == 0) PetscCall(AdhSolverSetElasticType(scratch, names[t]));
-      else if (k == 1) PetscCall(AdhSolverSetCriterionType(scratch, names[t]));
-      else if (k == 2) PetscCall(AdhSolverSetControlType(scratch, names[t]));
-      else PetscCall(AdhSolverSetPredictorType(scratch, names[t]));
+      PetscCall(set[k](scratch, names[t]));
       PetscCall(AdhSolverTypeSetFromOptions_Private(scratch, regs[k], names[t], ops[k]));
     }
     PetscCall(PetscFree(names));

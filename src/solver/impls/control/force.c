@@ -114,8 +114,9 @@ static PetscErrorCode SetUp_Force(AdhSolver s)
     s->set_response = f->xunit; /* the set's operations keep it zero off the set */
   }
   if (s->boundary == ADH_BOUNDARY_PERIODIC && !f->Kmean) {
-    /* c0 = 2/(E* q_min), the compliance of the longest wave: the Fourier preconditioner's mean
-       mode is its inverse, so the preconditioned operator stays well conditioned. */
+    /* c0, the body's compliance of the longest wave (2/(E* q_min) on a half-space): the Fourier
+       preconditioner's mean mode is its inverse, so the preconditioned operator stays well
+       conditioned. */
     f->c0 = s->eops.mean_compliance;
     PetscCall(MatCreateAdhMeanCompliance(s->K, f->c0, &f->Kmean));
     s->Kcontrol        = f->Kmean;

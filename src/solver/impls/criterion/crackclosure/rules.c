@@ -170,7 +170,7 @@ PetscErrorCode AdhCrackClosureDetach_Private(AdhSolver s, PetscBool detach, Pets
 {
   CrackClosure      *cc = (CrackClosure *)s->crops.data;
   const AdhGrid      g  = s->grid;
-  const PetscReal    chi_per_area = s->eops.chi_per_area; /* dgamma = chi Sigma^2 / (hx hy E*) */
+  const PetscReal    chi_per_area = s->eops.chi_per_area; /* dgamma = chi_per_area Sigma^2 (the body's) */
   const PetscBool    wrap = (PetscBool)(s->boundary == ADH_BOUNDARY_PERIODIC);
   PetscScalar       *pa, *xa = NULL;
   const PetscScalar *ta, **Gl;

@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include "results/resultsimpl.h"
 
-#define ADH_CHECKPOINT_VERSION 9 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back); 8: the curve's contact_perimeter and cohesive_perimeter; 9: the elastic body (-adh_elastic) and its options */
+#define ADH_CHECKPOINT_VERSION 9 /* 4: crack-closure's radius; 5: attach rule, critical stress, pull-off tolerance, predictor; 6: the results file; 7: crack-closure's largest radius, and the set-update loop of 2026-11-25 (points that let go may come back); 8: the curve's contact_perimeter and cohesive_perimeter; 9: the elastic body (-adh_elastic) and its options (a checkpoint of version 8 is read as a half-space's) */
 
 typedef struct {
   const char *option; /* what a restart must repeat, named as the user gives it */
@@ -306,8 +306,9 @@ static PetscErrorCode CheckShape(AdhSolver s, PetscViewer v)
 
   PetscFunctionBegin;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &version));
-  /* an older checkpoint came from another set-update loop or criterion: its curve would not go on as it began */
-  PetscCheck(version == ADH_CHECKPOINT_VERSION, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
+  /* an older checkpoint came from another set-update loop or criterion: its curve would not go on as
+     it began; version 8 holds the same state, of a half-space (its -adh_elastic absent), and goes on */
+  PetscCheck(version == ADH_CHECKPOINT_VERSION || version == 8, s->comm, PETSC_ERR_FILE_UNEXPECTED, "-adh_restart %s: not an adhbem checkpoint of version %d (it has version %" PetscInt_FMT "; a checkpoint of an older adhbem cannot be continued: run the path again)", s->restart, ADH_CHECKPOINT_VERSION, version);
   n = Shapes(s, shape, &Nx, &Ny, &Lx, &Ly);
   for (PetscInt k = 0; k < n; k++) {
     PetscBool same = PETSC_FALSE;

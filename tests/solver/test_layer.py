@@ -226,6 +226,32 @@ def test_attributes_and_restart_refusal(tmp_path):
     assert r.returncode == 0, r.stderr[-2000:]
 
 
+def test_checkpoint_of_the_version_before_goes_on_as_a_half_space(tmp_path):
+    """A checkpoint of version 8 (before the elastic body: no -adh_elastic in it) is taken as a
+    half-space's: a restart from it gives the uninterrupted run's curve; on a layer it is refused."""
+    serial_only()
+    import h5py
+    base = [EXE, "-adh_n", "32", "-adh_boundary", "periodic", "-adh_gamma", "5e-4", "-adh_path", "0,0.01,-0.01",
+            "-adh_steps", "6", "-adh_start", "adhesive", "-adh_fftw_planner", "estimate"]
+    whole = tmp_path / "whole.h5"
+    assert subprocess.run(base + ["-adh_output", str(whole)], capture_output=True, timeout=120).returncode == 0
+    ck = tmp_path / "ck.h5"
+    r = subprocess.run(base + ["-adh_checkpoint", str(ck), "-adh_output", str(tmp_path / "a.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with h5py.File(ck, "r+") as f:  # as adhbem of version 8 wrote it
+        assert int(f.attrs["version"]) == 9
+        f.attrs["version"] = np.array(8, dtype=f.attrs["version"].dtype)
+        del f.attrs["-adh_elastic"]
+    r = subprocess.run(base + ["-adh_elastic", "layer", "-adh_layer_thickness", "0.1", "-adh_E1", "1", "-adh_nu1", "0.3",
+                               "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")], capture_output=True, text=True, timeout=120)
+    assert r.returncode != 0 and "-adh_elastic" in r.stdout + r.stderr
+    r = subprocess.run(base + ["-adh_restart", str(ck), "-adh_output", str(tmp_path / "c.h5")], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with h5py.File(whole, "r") as a, h5py.File(tmp_path / "c.h5", "r") as b:
+        assert np.array_equal(a["curve/force"][()], b["curve/force"][()])
+
+
 @pytest.mark.parametrize("options, words", [
     (dict(boundary="free"), "-adh_boundary periodic"),
     (dict(layer_thickness=0.0), "-adh_layer_thickness"),

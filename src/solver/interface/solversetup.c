@@ -229,7 +229,8 @@ PetscErrorCode AdhSolverSetUp(AdhSolver s)
     if (s->eops.base.setup) PetscCall(s->eops.base.setup(s));
     {
       const PetscReal c[4] = {s->eops.self_compliance, s->eops.chi_per_area, s->eops.stress_per_work, s->eops.mean_compliance};
-      for (PetscInt k = 0; k < 4; k++) PetscCheck(c[k] > 0 && !PetscIsInfOrNanReal(c[k]), s->comm, PETSC_ERR_PLIB, "-adh_elastic %s: the body's set-up left its element's constants unset or not positive (self-compliance %g, chi per area %g, stress per work %g, mean compliance %g)", s->elastic_type, (double)c[0], (double)c[1], (double)c[2], (double)c[3]);
+      for (PetscInt k = 0; k < 4; k++) PetscCheck(!PetscIsInfOrNanReal(c[k]), s->comm, PETSC_ERR_ARG_OUTOFRANGE, "-adh_size %g x %g: the elastic body's element constants are not finite for elements of %g x %g (self-compliance %g, chi per area %g): the element is beyond what double precision holds", (double)s->grid->Lx, (double)s->grid->Ly, (double)s->grid->hx, (double)s->grid->hy, (double)c[0], (double)c[1]);
+      for (PetscInt k = 0; k < 4; k++) PetscCheck(c[k] > 0, s->comm, PETSC_ERR_PLIB, "-adh_elastic %s: the body's set-up left its element's constants unset or not positive (self-compliance %g, chi per area %g, stress per work %g, mean compliance %g)", s->elastic_type, (double)c[0], (double)c[1], (double)c[2], (double)c[3]);
     }
     PetscCall(s->eops.create_operators(s, s->grid, s->boundary, &s->K, &s->S));
     PetscCall(AdhGridCreateVector(s->grid, &s->h));

@@ -250,7 +250,7 @@ static PetscErrorCode CurvatureScaling(AdhSolver s, const PetscScalar *gamma, Pe
 }
 
 /* z = K r (W K W r where the law stiffens the energy), with under a force the compliance of the
-   longest wave, 2/(E* q_min), on the mean mode (the cell's has none; there the mean gap is free,
+   longest wave (the body's mean_compliance, 2/(E* q_min) on a half-space), on the mean mode (the cell's has none; there the mean gap is free,
    and it needs the step a wave of the cell's size would take). */
 static PetscErrorCode Precondition(AdhSolver s, const PetscScalar *gamma, PetscBool force, Vec r, Vec z)
 {

@@ -5,7 +5,7 @@
      that flattens the surface and gains the work of adhesion dgamma A0. The ratio
      U_el / (dgamma A0) below 1: full contact is the state of least energy at zero load, the surface
      sticks everywhere once in contact, and a compressive mean pressure is reached only in full
-     contact. On a periodic cell U_el / A0 = (1/2) <h S h> exactly, S the stiffness (E*|q|/2); a
+     contact. On a periodic cell U_el / A0 = (1/2) <h S h> exactly, S the body's stiffness (E*|q|/2 on a half-space); a
      free-boundary map is taken as one cell, its mean plane removed.
    - Pastewka & Robbins (PNAS 111, 3298, 2014, eq. 10, with kappa_rep = 2 and
      d_rep = 4 h'_rms / h''_rms): the surfaces are sticky (a finite force pulls them apart) when

@@ -2,14 +2,14 @@
    ADHPREDICTORPOLONSKYKEER - "polonsky-keer": Polonsky & Keer's conjugate gradient (Wear 1999) guesses the contact set
    of a step without adhesion, which the set-update loop then certifies
 
-   It works with the force constraint (preconditioned with the stiffness E*|q|/2, -adh_predictor_fourier) or at
+   It works with the force constraint (preconditioned with the body's stiffness (E*|q|/2 on a half-space), -adh_predictor_fourier) or at
    fixed d.
 
    Options Database Keys:
 +  -adh_predictor polonsky-keer    - selects it (the default on a periodic cell)
 .  -adh_predictor_rtol <1e-8>      - stop when an iteration changes the pressure by less than this of its 1-norm
 .  -adh_predictor_max_it <10000>   - or after this many iterations
--  -adh_predictor_fourier <true>   - under force control, precondition with the stiffness E*|q|/2
+-  -adh_predictor_fourier <true>   - under force control, precondition with the body's stiffness (E*|q|/2 on a half-space)
 
    Level: intermediate
 
@@ -34,7 +34,7 @@ M*/
 typedef struct {
   PetscReal rtol;    /* -adh_predictor_rtol: stop when an iteration changes p by less than this of its 1-norm */
   PetscInt  max_it;  /* -adh_predictor_max_it */
-  PetscBool fourier; /* -adh_predictor_fourier: under force control, precondition with the stiffness E*|q|/2 */
+  PetscBool fourier; /* -adh_predictor_fourier: under force control, precondition with the body's stiffness (E*|q|/2 on a half-space) */
   PetscInt  its;     /* iterations so far, over all steps */
 } PolonskyKeerData;
 
@@ -145,7 +145,7 @@ static PetscErrorCode PolonskyKeer(AdhSolver s, PetscBool force, PetscReal targe
       if (!z && PetscRealPart(pa[k]) > 0) loc[0] += PetscRealPart(ga[k] * ga[k]);
     }
     if (z) {
-      /* preconditioned: z = P S P g with S the stiffness E*|q|/2 on the grid (the inverse of the
+      /* preconditioned: z = P S P g with S the body's stiffness (E*|q|/2 on a half-space) on the grid (the inverse of the
          compliance's symbol) and P the projection onto the set's pressures of zero sum */
       PetscScalar *za;
       PetscReal    zloc[2], zglob[2], zbar;

@@ -39,10 +39,20 @@ E* = 1 throughout.
   successive grids, and one force-indentation curve under displacement control (128^2, unloading
   from a preload) against adhbem.theory.maugis_sphere, in Johnson & Greenwood's units.
 
---quick runs the coarse grids only (a smoke test of about 20 s in all; its figures are not the
+- layer: JKR spheres on thin layers (an array: one rigid sphere R = 1 a periodic cell 1 x 1) of an
+  incompressible layer (E1 = 1, nu1 = 0.5) bonded to a rigid base, of thicknesses T = 0.2 to
+  0.0125 (a_c/T 1 to 7), dgamma 2.8e-3 (on the half-space a_c = 0.195), under force control from a
+  Hertz start at 0.5 F_adh to -2 F_adh, bisected, crack-closure on grids 128 to 512 (a_c/h 11 to
+  100), pohrt-popov on 128, 256, 512, and the half-space on the free boundary as the control: the
+  pull-off and the contact radius along the unloading against adhbem.theory.layer_sphere and
+  layer_pulloff (an isolated sphere, solved by Lebedev and Ufliand's integral equation), beside
+  Shull's (2002) fitted corrections. Left: force against contact radius at three thicknesses
+  (N = 256); right: the pull-off over the half-space's against a_c/T. About 20 minutes.
+
+--quick runs the coarse grids only (a smoke test of about 40 s in all; its figures are not the
 study's). --json FILE writes the tables' numbers as JSON (tests/test_verify_bench.py reads it).
-Full size takes 5 s (westergaard) to about a minute (jkr) a case on one core, about 2.5 minutes
-in all.
+Full size takes 5 s (westergaard) to about a minute (jkr) a case on one core, and about 20 minutes
+(layer); about 23 minutes in all.
 """
 import argparse
 import json
@@ -567,15 +577,139 @@ def case_maugis(quick, out):
                 curve=dict(N=Nc, mean_force_error=float(eF.mean()), max_force_error=float(eF.max()), **r["counts"]))
 
 
+# ---- layer -----------------------------------------------------------------------------------------
+
+def shull_sphere(a, T, R, g, E_star):
+    """Shull's (2002) JKR sphere on a thin incompressible layer bonded to a rigid base: his fitted
+    corrections to Hertz's load, 1 + 0.33 (a/T)^3, and to the flat punch's compliance,
+    1 / (1 + 1.33 a/T + 1.33 (a/T)^3), fitted to finite-element results for an indenter bonded to
+    the layer (full friction; adhbem's contact is frictionless), in JKR's energy balance:
+    F = F_H(a) - sqrt(2 dgamma / |dC/dA|)."""
+    a = np.asarray(a, dtype=float)
+    x = a / T
+    F_H = 4 * E_star * a ** 3 / (3 * R) * (1 + 0.33 * x ** 3)
+    C0 = 1 / (2 * E_star * a)
+    fC = 1 / (1 + 1.33 * x + 1.33 * x ** 3)
+    dfC = -(1.33 / T + 3 * 1.33 * x ** 2 / T) * fC ** 2          # d fC / da
+    dCda = -C0 / a * fC + C0 * dfC
+    return F_H - np.sqrt(2 * g * 2 * math.pi * a / np.abs(dCda))
+
+
+def case_layer(quick, out):
+    R, E1, nu1, g = 1.0, 1.0, 0.5, 2.8e-3
+    Es = E1 / (1 - nu1 ** 2)
+    thicknesses = (math.inf, 0.05) if quick else (math.inf, 0.2, 0.1, 0.05, 0.025, 0.0125)
+    grids = {"crack-closure": (128, 192) if quick else (128, 192, 256, 384, 512),
+             "pohrt-popov": (128,) if quick else (128, 256, 512)}
+    show_N = 192 if quick else 256
+    F_half, a_half = theory.jkr_pulloff(R, g, Es)
+    res, rows, srows = {}, [], []
+    for T in thicknesses:
+        F_adh, a_c, _ = theory.layer_pulloff(T, R, g, E1, nu1)
+        radii = np.linspace(0.3 * a_c, 3.0 * a_c, 40 if quick else 100)
+        d_th, F_th = theory.layer_sphere(radii, T, R, g, E1, nu1)
+        stable = radii >= a_c
+        res[T] = dict(exact=F_adh, a_c=a_c, grids={})
+        if not math.isinf(T):
+            F_s = shull_sphere(radii, T, R, g, Es)
+            k = int(np.argmin(F_s))
+            res[T].update(shull=-float(F_s[k]) / F_adh, shull_a=float(radii[k]) / a_c)
+        # the half-space's control on the free boundary; each layer on the periodic cell (its neighbours screened)
+        body = dict(boundary="free", E_star=Es) if math.isinf(T) else \
+            dict(boundary="periodic", elastic="layer", layer_thickness=T, E1=E1, nu1=nu1)
+        for crit, Ns in grids.items():
+            res[T]["grids"][crit] = {}
+            for N in Ns:
+                r = run(n=N, **body, gamma=g, radius=R, criterion=crit, start="hertz", control="force",
+                        path=[0.5 * F_adh, -2.0 * F_adh], steps=30, pulloff_rtol=1e-4)
+                c = r["curve"]
+                a_run = np.sqrt(c["area"] / math.pi)
+                k = int(np.argmin(c["force"]))
+                # the contact radius along the unloading on JKR's stable branch (a > 1.1 a_c), against the exact one
+                on = (a_run > 1.1 * a_c) & (c["contact_points"] > 0)
+                a_th = np.interp(c["force"][on], F_th[stable], radii[stable])
+                res[T]["grids"][crit][N] = dict(ratio=r["pull_off"] / F_adh, a=float(a_run[k]) / a_c,
+                                                a_path=float(np.max(np.abs(a_run[on] / a_th - 1))) if on.any() else None,
+                                                pulled_off=bool(c["pulled_off"].any()), counts=r["counts"],
+                                                F=c["force"] / F_half, r=a_run / a_half)
+                q = res[T]["grids"][crit][N]
+                rows.append([f"{T:g}", f"{a_c / T:.2f}", crit, f"{N}", f"{a_c * N:.1f}", f"{q['ratio']:.4f}",
+                             f"{q['a']:.3f}", f"{q['a_path']:.4f}" if q["a_path"] is not None else "",
+                             "yes" if q["pulled_off"] else "NO"] + count_cells(q["counts"]))
+        cc = [q["ratio"] for q in res[T]["grids"]["crack-closure"].values()]
+        pp = res[T]["grids"]["pohrt-popov"]
+        res[T]["crack-closure range"] = (min(cc), max(cc))
+        srows.append([f"{T:g}", f"{a_c / T:.2f}", f"{F_adh / F_half:.4f}", f"{a_c / a_half:.4f}",
+                      f"{min(cc):.4f} to {max(cc):.4f}", f"{max(abs(v - 1) for v in cc):.4f}",
+                      " ".join(f"{pp[N]['ratio']:.4f}" for N in grids["pohrt-popov"]),
+                      f"{res[T]['shull']:.4f}" if "shull" in res[T] else "", f"{res[T]['shull_a']:.3f}" if "shull" in res[T] else ""])
+    table(f"layer: JKR spheres on an incompressible bonded layer (R = 1, cell 1 x 1, dgamma {g:g}; T = inf: the half-space "
+          "on the free boundary 1 x 1; force control from 0.5 F_adh to -2 F_adh, 30 steps, bisected to 1e-4): the pull-off "
+          "over the exact F_adh, the contact radius there over a_c, the largest error of the contact radius along the "
+          "unloading (a > 1.1 a_c)",
+          ["T", "a_c/T", "criterion", "N", "a_c/h", "pull-off / F_adh", "a/a_c there", "max abs(a/a_exact - 1)",
+           "pulled off"] + COUNTS_HEADER, rows)
+    table("layer: the exact pull-off (theory.layer_pulloff) over the half-space's 1.5 pi dgamma R and its contact radius; "
+          f"crack-closure's pull-off over the exact on the grids {', '.join(map(str, grids['crack-closure']))} (the range "
+          f"and the largest deviation), pohrt-popov's on {', '.join(map(str, grids['pohrt-popov']))}; Shull's fitted "
+          "corrections' pull-off and contact radius over the exact",
+          ["T", "a_c/T", "F_adh / half-space's", "a_c / half-space's", "crack-closure / F_adh", "largest abs(r - 1)",
+           "pohrt-popov / F_adh", "Shull / exact", "Shull's a_c / exact"], srows)
+
+    layers = [T for T in thicknesses if not math.isinf(T)]
+    fig, (ax1, ax2) = figure()
+    shown = [t for t in layers if t in (0.2, 0.05, 0.0125)] or layers
+    for colour, T in zip(("C0", "C1", "C2"), shown):
+        a_c = res[T]["a_c"]
+        radii = np.linspace(0.5 * a_c, 2.6 * a_c, 40 if quick else 100)
+        _, F_th = theory.layer_sphere(radii, T, R, g, E1, nu1)
+        ax1.plot(radii / a_half, F_th / F_half, color=colour, lw=2.5, alpha=0.45, zorder=1)
+        ax1.plot(radii / a_half, shull_sphere(radii, T, R, g, Es) / F_half, color=colour, lw=1, ls="--", zorder=1)
+        q = res[T]["grids"]["crack-closure"][show_N]
+        on = q["r"] > 0
+        on[0] = False                                    # the Hertz start, not an adhesive state
+        ax1.plot(q["r"][on], q["F"][on], "o", ms=3.5, color=colour, label=f"$T$ = {T:g} ($a_c/T$ = {a_c / T:.1f})")
+    ax1.plot([], [], color="0.4", lw=2.5, alpha=0.45, label="exact")
+    ax1.plot([], [], color="0.4", lw=1, ls="--", label="Shull's fits")
+    ax1.axhline(0, color="k", lw=0.5, ls=":")
+    ax1.set_ylim(-1.8, 1.0)
+    ax1.set_xlim(0.2, 1.7)
+    ax1.set_xlabel("contact radius / half-space's $a_c$")
+    ax1.set_ylabel(r"force / $1.5\pi\Delta\gamma R$")
+    ax1.set_title(f"crack-closure, N = {show_N}, force control", fontsize=9)
+    ax1.legend(fontsize=7, loc="lower right")
+    aT = np.array([res[T]["a_c"] / T for T in layers])
+    Tfine = np.geomspace(min(layers) / 1.2, 2.0, 6 if quick else 30)
+    ex = [theory.layer_pulloff(T, R, g, E1, nu1) for T in Tfine]
+    ax2.plot([e[1] / T for e, T in zip(ex, Tfine)], [e[0] / F_half for e in ex], **GREY, label="exact")
+    ax2.plot(aT, [res[T]["shull"] * res[T]["exact"] / F_half for T in layers], "k--", lw=1, label="Shull's fits")
+    for m, crit in zip("os", CRITERIA):
+        vals = np.array([[q["ratio"] * res[T]["exact"] / F_half for q in res[T]["grids"][crit].values()] for T in layers])
+        mid = np.median(vals, axis=1)
+        ax2.errorbar(aT, mid, yerr=[mid - vals.min(axis=1), vals.max(axis=1) - mid], fmt=m, ms=5, mfc="none", capsize=2,
+                     label=f"{crit}, N {grids[crit][0]}-{grids[crit][-1]}")
+    ax2.set_xscale("log")
+    ax2.set_xlabel("$a_c / T$ (the layer's $a_c$)")
+    ax2.set_ylabel(r"pull-off / $1.5\pi\Delta\gamma R$")
+    ax2.set_title("force control", fontsize=9)
+    ax2.legend(fontsize=7, loc="upper left")
+    save(fig, out, "layer")
+    return dict(thickness={f"{T:g}": dict(exact=res[T]["exact"], a_c=res[T]["a_c"], shull=res[T].get("shull"),
+                                          grids={crit: {str(N): dict(ratio=q["ratio"], a=q["a"], a_path=q["a_path"],
+                                                                     pulled_off=q["pulled_off"], **q["counts"])
+                                                        for N, q in res[T]["grids"][crit].items()} for crit in CRITERIA})
+                           for T in thicknesses})
+
+
 CASES = dict(hertz=case_hertz, westergaard=case_westergaard, jkr=case_jkr, punch=case_punch, wave=case_wave,
-             maugis=case_maugis)
+             maugis=case_maugis, layer=case_layer)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  epilog="cases: " + ", ".join(CASES) + ". See the module docstring (the top of bench/verify.py).")
     ap.add_argument("--case", default="all", help="comma-separated cases, or all (default)")
-    ap.add_argument("--quick", action="store_true", help="coarse grids only (a smoke test, about 20 s in all)")
+    ap.add_argument("--quick", action="store_true", help="coarse grids only (a smoke test, about 40 s in all)")
     ap.add_argument("--out", help="the folder of the figures CASE.png (default: docs/_static/verification/; with --quick "
                     "BUILD/verification-quick/, so that a smoke test does not replace the documentation's figures)")
     ap.add_argument("--json", help="also write the tables' numbers to this JSON file")

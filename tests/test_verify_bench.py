@@ -1,7 +1,8 @@
 """./run bench verify --quick: every analytic verification case runs, draws its figure and prints
 its tables; from its --json output, crack-closure's JKR pull-off under force control is within 3%
-of F_adh = 1.5 pi dgamma R at every grid and Hertz's force within 2% at every state (the quick
-grids; the full-size figures are in docs/_static/verification/), and bench convergence's --plot draws. About 20 s serial."""
+of F_adh = 1.5 pi dgamma R at every grid, on a thin layer within 1% of the exact pull-off, and Hertz's
+force within 2% at every state (the quick grids; the full-size figures are in
+docs/_static/verification/), and bench convergence's --plot draws. About 40 s serial."""
 import json
 import os
 import subprocess
@@ -11,7 +12,7 @@ import pytest
 
 from common import ROOT, python_env
 
-CASES = ("hertz", "westergaard", "jkr", "punch", "wave", "maugis")
+CASES = ("hertz", "westergaard", "jkr", "punch", "wave", "maugis", "layer")
 WAIT = 600  # seconds: the longest the quick run may take on a slow, shared machine
 
 
@@ -58,6 +59,18 @@ def test_jkr_pull_off_of_crack_closure_within_3_percent(quick):
     # the paper's criterion comes off high on the coarse grids and nearer F_adh on the finer
     pp = [run["ratio"] for _, run in sorted(pull["pohrt-popov"].items(), key=lambda kv: float(kv[0]))]
     assert pp[0] > pp[-1] > 1.0
+
+
+def test_layer_pull_off_within_1_percent(quick):
+    """JKR on a thin incompressible layer and the half-space's control: crack-closure's pull-off
+    within 1% of the exact (theory.layer_pulloff) on the quick grids, pohrt-popov's above it."""
+    thickness = quick["results"]["cases"]["layer"]["thickness"]
+    assert "inf" in thickness and len(thickness) >= 2
+    for T, res in thickness.items():
+        for N, run in res["grids"]["crack-closure"].items():
+            assert run["pulled_off"] and abs(run["ratio"] - 1) < 0.01, (T, N, run["ratio"])
+        for N, run in res["grids"]["pohrt-popov"].items():
+            assert run["pulled_off"] and run["ratio"] > 1.0, (T, N, run["ratio"])
 
 
 def test_convergence_plot_draws_from_its_json(tmp_path):

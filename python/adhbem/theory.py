@@ -21,6 +21,21 @@ and ``k = sqrt(m^2 - 1)``::
     D = A^2 - (4/3) lambda A k
 
 The pull-off force ``-min P`` goes from 2 (DMT, ``lambda -> 0``) to 1.5 (JKR, large ``lambda``).
+
+An elastic layer on a rigid base (``layer_multiplier``, ``layer_punch``, ``layer_sphere``,
+``layer_pulloff``): a rigid flat punch or sphere pressed without friction on a layer of thickness
+``T``, bonded to its base or slipping on it, an isolated contact. Its surface moves by
+``C(q) = 2 f(qT) / (E* q)`` under a pressure wave of wave number ``q`` (``E* = E1 / (1 - nu1^2)``).
+Written as ``p(r) = phi(a) / sqrt(a^2 - r^2) - int_r^a phi'(t) / sqrt(t^2 - r^2) dt``, the
+contact problem is the Fredholm equation of the second kind (Lebedev and Ufliand, 1958)::
+
+    phi(t) - int_0^a K(t, s) phi(s) ds = (E*/2) (2/pi) d/dt int_0^t r w(r) / sqrt(t^2 - r^2) dr
+    K(t, s) = (2 / (pi T)) int_0^inf (1 - f(x)) cos(x t / T) cos(x s / T) dx
+
+(``w(r)`` the displacement the contact imposes), solved here by Gauss-Legendre quadrature in
+``x`` and Nystrom's method in ``t``. The force is ``2 pi int_0^a phi``, and the edge's energy
+release rate ``pi phi(a)^2 / (2 E* a)``: JKR on the layer is ``phi(a) = -sqrt(2 E* a dgamma / pi)``.
+``K = 0`` gives the half-space's closed forms above.
 """
 from __future__ import annotations
 
@@ -406,3 +421,192 @@ def maugis_pulloff(lam: float) -> tuple[float, float, float]:
     a = 0.5 * (lo + hi)
     Pa, Da, _ = maugis_sphere(lam, [a])
     return float(Pa[0]), a, float(Da[0])
+
+
+# ---- an elastic layer on a rigid base -----------------------------------------------------------
+
+def layer_multiplier(t, nu1: float, base: str = "bonded") -> np.ndarray:
+    """The layer's compliance over the half-space's, ``f(qT)`` in ``C(q) = 2 f(qT) / (E* q)``.
+
+    Parameters
+    ----------
+    t : array_like
+        ``q T``, the wave number times the layer's thickness, >= 0.
+    nu1 : float
+        The layer's Poisson ratio, from 0 to 0.5.
+    base : {"bonded", "slip"}, optional
+        The layer bonded to its rigid base or slipping on it without friction.
+
+    Returns
+    -------
+    numpy.ndarray
+        bonded: ``(k sinh 2t - 2t) / (k cosh 2t + 2t^2 + (1 + k^2)/2)``, ``k = 3 - 4 nu1``;
+        slip: ``(cosh 2t - 1) / (sinh 2t + 2t)``; both tend to 1 for a thick layer.
+
+    Examples
+    --------
+    >>> round(float(layer_multiplier(30.0, 0.5)[()]), 12)
+    1.0
+    """
+    if base not in ("bonded", "slip"):
+        raise ValueError(f"base: 'bonded' or 'slip', not {base!r}")
+    t = np.asarray(t, dtype=float)
+    out = np.ones_like(t)
+    x = t[t < 20.0]                       # beyond, f = 1 to 1e-15
+    if base == "bonded":
+        k = 3.0 - 4.0 * nu1
+        out[t < 20.0] = (k * np.sinh(2 * x) - 2 * x) / (k * np.cosh(2 * x) + 2 * x * x + (1 + k * k) / 2)
+    else:
+        out[t < 20.0] = (np.cosh(2 * x) - 1) / (np.sinh(2 * x) + 2 * x)
+    return out
+
+
+def _layer_moments(a: float, T: float, nu1: float, base: str) -> tuple[np.ndarray, np.ndarray]:
+    """Lebedev and Ufliand's equation for the right-hand sides 1 and t^2 on [0, a]: their
+    integrals and their values at t = a (both scaled by pi / E*)."""
+    n = 32 + int(12 * a / T)              # the kernel's width is T: resolve it on [0, a]
+    s, ws = np.polynomial.legendre.leggauss(n)
+    s, ws = 0.5 * a * (s + 1), 0.5 * a * ws
+    rhs = np.stack([np.ones(n), s * s], axis=1)
+    if math.isinf(T):
+        return ws @ rhs, np.array([1.0, a * a])
+    xmax = 40.0                           # 1 - f(x) ~ x^2 exp(-2x): below 1e-30 beyond
+    m = 64 + int(2.0 * xmax * a / T)      # about 12 nodes a period of cos(x a / T)
+    x, wx = np.polynomial.legendre.leggauss(m)
+    x, wx = 0.5 * xmax * (x + 1), 0.5 * xmax * wx
+    g = (1.0 - layer_multiplier(x, nu1, base)) * wx * 2.0 / (math.pi * T)
+    cs = np.cos(np.multiply.outer(s, x) / T)             # n x m
+    K = (cs * g) @ cs.T                                   # K(s_i, s_j), separable in t and s
+    phi = np.linalg.solve(np.eye(n) - K * ws, rhs)
+    Ka = (np.cos(x * a / T) * g) @ cs.T                   # K(a, s_j)
+    return ws @ phi, np.array([1.0, a * a]) + (Ka * ws) @ phi
+
+
+def layer_punch(a, T: float, E1: float = 1.0, nu1: float = 0.5, base: str = "bonded") -> np.ndarray:
+    """The compliance ``d / F`` of a rigid flat punch of radius ``a`` on a layer of thickness ``T``.
+
+    Parameters
+    ----------
+    a : array_like
+        The punch's radii, > 0.
+    T : float
+        The layer's thickness, > 0 (``math.inf``: the half-space).
+    E1, nu1 : float, optional
+        The layer's Young's modulus and Poisson ratio.
+    base : {"bonded", "slip"}, optional
+        The layer bonded to its rigid base or slipping on it.
+
+    Returns
+    -------
+    numpy.ndarray
+        The compliance; ``1 / (2 E* a)`` on the half-space.
+
+    Examples
+    --------
+    >>> round(float(layer_punch(0.1, math.inf, 0.75, 0.5)[()]), 12)   # E* = 1
+    5.0
+    """
+    Es = E1 / (1.0 - nu1 * nu1)
+    a = np.asarray(a, dtype=float)
+    return np.vectorize(lambda r: 1.0 / (2.0 * Es * _layer_moments(float(r), T, nu1, base)[0][0]))(a)
+
+
+def layer_sphere(a, T: float, R: float = 1.0, dgamma: float = 0.0, E1: float = 1.0, nu1: float = 0.5,
+                 base: str = "bonded") -> tuple[np.ndarray, np.ndarray]:
+    """The JKR sphere on a layer: indentation and force at contact radii ``a``.
+
+    Parameters
+    ----------
+    a : array_like
+        Contact radii, > 0.
+    T : float
+        The layer's thickness, > 0 (``math.inf``: ``jkr_sphere``).
+    R : float, optional
+        The rigid sphere's radius (a paraboloid ``r^2 / (2R)``).
+    dgamma : float, optional
+        The work of adhesion (0: the layer's Hertz problem).
+    E1, nu1 : float, optional
+        The layer's Young's modulus and Poisson ratio.
+    base : {"bonded", "slip"}, optional
+        The layer bonded to its rigid base or slipping on it.
+
+    Returns
+    -------
+    d, F : numpy.ndarray
+        The indentation (the approach of the sphere to the layer's undeformed surface far away) and
+        the force (compression > 0).
+
+    Examples
+    --------
+    >>> d, F = layer_sphere([0.1], math.inf, 1.0, 0.0, 0.75, 0.5)   # Hertz, E* = 1
+    >>> round(float(d[0]), 9), round(float(F[0]), 9)
+    (0.01, 0.001333333)
+    """
+    Es = E1 / (1.0 - nu1 * nu1)
+
+    def one(r):
+        I, at_a = _layer_moments(r, T, nu1, base)
+        # phi = (E*/pi) (d phi_1 - phi_2 / R), its edge value -sqrt(2 E* a dgamma / pi)
+        d = (at_a[1] / R - math.pi / Es * math.sqrt(2.0 * Es * r * dgamma / math.pi)) / at_a[0]
+        return d, 2.0 * Es * (d * I[0] - I[1] / R)
+
+    a = np.atleast_1d(np.asarray(a, dtype=float))
+    dF = np.array([one(float(r)) for r in a])
+    return dF[:, 0], dF[:, 1]
+
+
+def _golden_min(f, lo: float, hi: float, iterations: int = 100) -> float:
+    """The minimiser of a unimodal f on [lo, hi] by golden section."""
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iterations):
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - g * (hi - lo)
+            f1 = f(x1)
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + g * (hi - lo)
+            f2 = f(x2)
+        if hi - lo <= 1e-10 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+def layer_pulloff(T: float, R: float = 1.0, dgamma: float = 1.0, E1: float = 1.0, nu1: float = 0.5,
+                  base: str = "bonded") -> tuple[float, float, float]:
+    """The JKR sphere's pull-off on a layer: the largest tension, with the contact radius and the
+    indentation there (the pull-off under force control).
+
+    Parameters
+    ----------
+    T : float
+        The layer's thickness, > 0 (``math.inf``: ``jkr_pulloff``).
+    R, dgamma : float, optional
+        The sphere's radius and the work of adhesion.
+    E1, nu1 : float, optional
+        The layer's Young's modulus and Poisson ratio.
+    base : {"bonded", "slip"}, optional
+        The layer bonded to its rigid base or slipping on it.
+
+    Returns
+    -------
+    F_adh, a_c, d_c : float
+        The pull-off force (> 0), the contact radius and the indentation at it.
+
+    Examples
+    --------
+    >>> F, a, d = layer_pulloff(math.inf, 1.0, 1e-3, 0.75, 0.5)
+    >>> round(F / (1.5 * math.pi * 1e-3), 9), round(a / jkr_pulloff(1.0, 1e-3)[1], 6)
+    (1.0, 1.0)
+    """
+    _, a_jkr = jkr_pulloff(R, dgamma, E1 / (1.0 - nu1 * nu1))
+
+    def force(r):
+        return float(layer_sphere([r], T, R, dgamma, E1, nu1, base)[1][0])
+    grid = np.geomspace(0.05 * a_jkr, 2.0 * a_jkr, 24)   # a layer shrinks the radius at pull-off
+    i = int(np.argmin([force(r) for r in grid]))
+    a = _golden_min(force, grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)])
+    d, F = layer_sphere([a], T, R, dgamma, E1, nu1, base)
+    return -float(F[0]), a, float(d[0])

@@ -11,8 +11,8 @@ shows: the zone's edge is where an element's centre lies within the range). Pull
 contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact radius, at 10
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
-    ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--np P] [--route fixed-point,minimize]
-        [--smoothing 0.2] [--n N]
+    ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--steps-with-grid] [--np P]
+        [--route fixed-point,minimize] [--smoothing 0.2] [--n N]
 
 --n N: every lambda on one N^2 grid (the domain the largest one a lambda needs), the zone's width
 then falling as lambda grows: the cost on the same sphere and grid.
@@ -23,7 +23,8 @@ then falling as lambda grows: the cost on the same sphere and grid.
 
 The table: lambda, the route, the grid, the zone's width in elements (from the run's resolution
 report), the largest tension over Maugis', the first-order extrapolation over Maugis' (the fixed
-point's order), the iterations (KSP or the minimisation's), FFT pairs and CPU time.
+point's order), the iterations (KSP or the minimisation's), FFT pairs (in all and a state) and CPU
+time.
 """
 import argparse
 import math
@@ -79,7 +80,7 @@ def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None):
             width_run = float(f.attrs.get("pull_off_cohesive_width", float("nan")))
             ksp, ffts = int(f["curve/ksp_iterations"][()].sum()), int(f["curve/fft_pairs"][()].sum())
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu)
+    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps)
 
 
 def main():
@@ -92,6 +93,9 @@ def main():
     ap.add_argument("--smoothing", type=float, default=0.2, help="the minimize route's -adh_dugdale_smoothing")
     ap.add_argument("--n", type=int, default=0, help="every lambda on this one grid (its domain the largest the lambdas need), "
                     "instead of grids sized to --widths: the cost of the same sphere and grid as lambda grows")
+    ap.add_argument("--steps-with-grid", action="store_true",
+                    help="steps in proportion to the grid's N, --steps on the first case's grid: a step then moves the "
+                    "contact's edge across about as many elements at every lambda and width")
     a = ap.parse_args()
     routes = a.route.split(",")
     for route in routes:
@@ -106,10 +110,16 @@ def main():
         widths = widths[:1]
         grid = (a.n, max(case(lam, widths[0])[2] for lam in lambdas))
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
-    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'iterations':>10} {'FFT pairs':>10} {'CPU s':>7}")
+    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'iterations':>10} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}")
+    N_ref = grid[0] if grid else case(lambdas[0], widths[0])[1]
+
+    def steps(lam, w):
+        if not a.steps_with_grid:
+            return a.steps
+        return max(1, round(a.steps * (grid[0] if grid else case(lam, w)[1]) / N_ref))
     for lam in lambdas:
         for route in routes:
-            rows = [run(lam, w, a.steps, a.np, route, a.smoothing, grid) for w in widths]
+            rows = [run(lam, w, steps(lam, w), a.np, route, a.smoothing, grid) for w in widths]
             P = rows[0]["exact"] / (math.pi * GAMMA)
             for k, r in enumerate(rows):
                 extra = ""
@@ -117,7 +127,7 @@ def main():
                     q = widths[k] / widths[k - 1]
                     f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
                     extra = f"{f_inf / r['exact']:.4f}"
-                print(f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>10} {r['ffts']:>10} {r['cpu']:>7.1f}",
+                print(f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>10} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}",
                       flush=True)
 
 

@@ -385,6 +385,25 @@ def maugis_sphere(lam: float, A) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return P, D, m
 
 
+def _golden_min(f, lo: float, hi: float, iterations: int = 100) -> float:
+    """The minimiser of a unimodal f on [lo, hi] by golden section."""
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iterations):
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - g * (hi - lo)
+            f1 = f(x1)
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + g * (hi - lo)
+            f2 = f(x2)
+        if hi - lo <= 1e-10 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
 def maugis_pulloff(lam: float) -> tuple[float, float, float]:
     """The pull-off of Maugis' sphere: the largest tension, where it is carried.
 
@@ -408,17 +427,7 @@ def maugis_pulloff(lam: float) -> tuple[float, float, float]:
         return float(maugis_sphere(lam, [a])[0][0])
     grid = np.geomspace(1e-3, 4.0, 400)
     i = int(np.argmin([P(a) for a in grid]))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-    g = (math.sqrt(5.0) - 1.0) / 2.0  # golden section on the bracket
-    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    for _ in range(100):
-        if P(x1) < P(x2):
-            hi, x2 = x2, x1
-            x1 = hi - g * (hi - lo)
-        else:
-            lo, x1 = x1, x2
-            x2 = lo + g * (hi - lo)
-    a = 0.5 * (lo + hi)
+    a = _golden_min(P, grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)])
     Pa, Da, _ = maugis_sphere(lam, [a])
     return float(Pa[0]), a, float(Da[0])
 
@@ -461,17 +470,28 @@ def layer_multiplier(t, nu1: float, base: str = "bonded") -> np.ndarray:
     return out
 
 
+def _check_layer(T: float, nu1: float, base: str) -> None:
+    if not T > 0:
+        raise ValueError(f"T: the layer's thickness must be > 0, not {T!r}")
+    if not 0.0 <= nu1 <= 0.5:
+        raise ValueError(f"nu1: the layer's Poisson ratio must be from 0 to 0.5, not {nu1!r}")
+    if base not in ("bonded", "slip"):
+        raise ValueError(f"base: 'bonded' or 'slip', not {base!r}")
+
+
 def _layer_moments(a: float, T: float, nu1: float, base: str) -> tuple[np.ndarray, np.ndarray]:
     """Lebedev and Ufliand's equation for the right-hand sides 1 and t^2 on [0, a]: their
     integrals and their values at t = a (both scaled by pi / E*)."""
+    if a / T > 200:
+        raise ValueError(f"a/T = {a / T:g}: beyond this reference's range (200; the lubrication limit applies)")
     n = 32 + int(12 * a / T)              # the kernel's width is T: resolve it on [0, a]
     s, ws = np.polynomial.legendre.leggauss(n)
     s, ws = 0.5 * a * (s + 1), 0.5 * a * ws
     rhs = np.stack([np.ones(n), s * s], axis=1)
     if math.isinf(T):
         return ws @ rhs, np.array([1.0, a * a])
-    xmax = 40.0                           # 1 - f(x) ~ x^2 exp(-2x): below 1e-30 beyond
-    m = 64 + int(2.0 * xmax * a / T)      # about 12 nodes a period of cos(x a / T)
+    xmax = 20.0                           # 1 - f(x) ~ x^2 exp(-2x): below 1e-15 beyond (layer_multiplier's 1)
+    m = 64 + int(4.0 * xmax * a / T)      # about 6 nodes a period of the kernel's fastest cos(2 x a / T)
     x, wx = np.polynomial.legendre.leggauss(m)
     x, wx = 0.5 * xmax * (x + 1), 0.5 * xmax * wx
     g = (1.0 - layer_multiplier(x, nu1, base)) * wx * 2.0 / (math.pi * T)
@@ -503,12 +523,13 @@ def layer_punch(a, T: float, E1: float = 1.0, nu1: float = 0.5, base: str = "bon
 
     Examples
     --------
-    >>> round(float(layer_punch(0.1, math.inf, 0.75, 0.5)[()]), 12)   # E* = 1
+    >>> round(float(layer_punch(0.1, math.inf, 0.75, 0.5)[0]), 12)   # E* = 1
     5.0
     """
+    _check_layer(T, nu1, base)
     Es = E1 / (1.0 - nu1 * nu1)
-    a = np.asarray(a, dtype=float)
-    return np.vectorize(lambda r: 1.0 / (2.0 * Es * _layer_moments(float(r), T, nu1, base)[0][0]))(a)
+    a = np.atleast_1d(np.asarray(a, dtype=float))
+    return np.array([1.0 / (2.0 * Es * _layer_moments(float(r), T, nu1, base)[0][0]) for r in a])
 
 
 def layer_sphere(a, T: float, R: float = 1.0, dgamma: float = 0.0, E1: float = 1.0, nu1: float = 0.5,
@@ -542,6 +563,7 @@ def layer_sphere(a, T: float, R: float = 1.0, dgamma: float = 0.0, E1: float = 1
     >>> round(float(d[0]), 9), round(float(F[0]), 9)
     (0.01, 0.001333333)
     """
+    _check_layer(T, nu1, base)
     Es = E1 / (1.0 - nu1 * nu1)
 
     def one(r):
@@ -553,25 +575,6 @@ def layer_sphere(a, T: float, R: float = 1.0, dgamma: float = 0.0, E1: float = 1
     a = np.atleast_1d(np.asarray(a, dtype=float))
     dF = np.array([one(float(r)) for r in a])
     return dF[:, 0], dF[:, 1]
-
-
-def _golden_min(f, lo: float, hi: float, iterations: int = 100) -> float:
-    """The minimiser of a unimodal f on [lo, hi] by golden section."""
-    g = (math.sqrt(5.0) - 1.0) / 2.0
-    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    f1, f2 = f(x1), f(x2)
-    for _ in range(iterations):
-        if f1 < f2:
-            hi, x2, f2 = x2, x1, f1
-            x1 = hi - g * (hi - lo)
-            f1 = f(x1)
-        else:
-            lo, x1, f1 = x1, x2, f2
-            x2 = lo + g * (hi - lo)
-            f2 = f(x2)
-        if hi - lo <= 1e-10 * hi:
-            break
-    return 0.5 * (lo + hi)
 
 
 def layer_pulloff(T: float, R: float = 1.0, dgamma: float = 1.0, E1: float = 1.0, nu1: float = 0.5,
@@ -605,8 +608,12 @@ def layer_pulloff(T: float, R: float = 1.0, dgamma: float = 1.0, E1: float = 1.0
 
     def force(r):
         return float(layer_sphere([r], T, R, dgamma, E1, nu1, base)[1][0])
+    _check_layer(T, nu1, base)
     grid = np.geomspace(0.05 * a_jkr, 2.0 * a_jkr, 24)   # a layer shrinks the radius at pull-off
     i = int(np.argmin([force(r) for r in grid]))
-    a = _golden_min(force, grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)])
+    if i in (0, len(grid) - 1):
+        raise ValueError(f"layer_pulloff: no largest tension between the contact radii {grid[0]:g} and "
+                         f"{grid[-1]:g}, the range searched (T/a_JKR = {T / a_jkr:g})")
+    a = _golden_min(force, grid[i - 1], grid[i + 1])
     d, F = layer_sphere([a], T, R, dgamma, E1, nu1, base)
     return -float(F[0]), a, float(d[0])

@@ -1,7 +1,8 @@
 """JKR spheres and flat punches on a thin layer against the axisymmetric solution of an isolated
 contact (adhbem.theory.layer_sphere, layer_punch, layer_pulloff: Lebedev and Ufliand's integral
 equation): the reference itself against the half-space's closed forms, the first-order effect of a
-thick layer, the thin (lubrication) limit and JKR's energy balance; then the solver's flat-punch
+thick layer, the thin (lubrication) limit, a finer quadrature and JKR's energy balance, its bad
+input; then the solver's flat-punch
 compliance and JKR pull-off on an incompressible bonded layer against it. The full study (six
 thicknesses, grids to 512^2, both criteria, Shull's fits) is ./run bench verify --case layer."""
 import math
@@ -36,16 +37,17 @@ def test_multiplier_is_the_solvers():
 
 
 def test_reference_is_jkr_on_the_halfspace():
+    """T = inf is the half-space's closed forms (the kernel left out). A layer 500 to 2000 times as
+    thick as the contact moves the JKR sphere's force at a given contact radius by a third-order
+    amount, (a/T)^3 (the first order is a rigid settlement, in d alone)."""
     a = np.array([0.05, 0.1, 0.2])
-    for T in (math.inf, 1e4):
-        d, F = theory.layer_sphere(a, T, 1.0, 2e-3, E1, NU1)
-        d0, F0 = theory.jkr_sphere(a, 1.0, 2e-3, ES)
-        tol = 1e-12 if math.isinf(T) else 1e-5        # a layer 1e5 times the contact: its effect ~ a/T
-        assert np.allclose(F, F0, rtol=tol, atol=0), T
-        # the approach also counts the layer's settlement far away, of order F / (E* T)
-        assert np.allclose(d, d0, rtol=tol, atol=0 if math.isinf(T) else np.max(np.abs(F)) / (ES * T)), T
-        C = theory.layer_punch(a, T, E1, NU1)
-        assert np.allclose(C, 1 / (2 * ES * a), rtol=tol, atol=0 if math.isinf(T) else 1 / (ES * T))
+    d, F = theory.layer_sphere(a, math.inf, 1.0, 2e-3, E1, NU1)
+    d0, F0 = theory.jkr_sphere(a, 1.0, 2e-3, ES)
+    assert np.allclose(F, F0, rtol=1e-12, atol=0) and np.allclose(d, d0, rtol=1e-12, atol=0)
+    assert np.allclose(theory.layer_punch(a, math.inf, E1, NU1), 1 / (2 * ES * a), rtol=1e-12, atol=0)
+    dev = theory.layer_sphere(a, 100.0, 1.0, 2e-3, E1, NU1)[1] / F0 - 1
+    assert np.all(dev > 0) and np.all(dev < 1e-8), dev
+    assert dev[1] / dev[0] == pytest.approx(8, rel=0.05) and dev[2] / dev[1] == pytest.approx(8, rel=0.05), dev
     F_adh, a_c, _ = theory.layer_pulloff(math.inf, 1.0, 2e-3, E1, NU1)
     F_jkr, a_jkr = theory.jkr_pulloff(1.0, 2e-3, ES)
     assert F_adh == pytest.approx(F_jkr, rel=1e-12) and a_c == pytest.approx(a_jkr, rel=1e-6)
@@ -58,9 +60,9 @@ def test_thick_layer_first_order(nu):
     integral = quad(lambda t: 1 - float(theory.layer_multiplier(t, nu)), 0, 60, limit=200)[0]
     slope = 2 / math.pi * integral
     for x in (0.002, 0.004):
-        C = float(theory.layer_punch(0.01, 0.01 / x, E1, nu)[()])
+        C = float(theory.layer_punch(0.01, 0.01 / x, E1, nu)[0])
         ratio = C * 2 * (E1 / (1 - nu ** 2)) * 0.01
-        assert (1 - ratio) / x == pytest.approx(slope, rel=3 * x * slope), x   # the next order ~ (a/T)^2
+        assert (1 - ratio) / x == pytest.approx(slope, rel=0.1 * x), x   # the next order ~ (a/T)^2
 
 
 def test_thin_limit_is_lubrication():
@@ -71,7 +73,7 @@ def test_thin_limit_is_lubrication():
     dev = []
     for x in (20, 40):
         T = a / x
-        C = float(theory.layer_punch(a, T, E1, NU1)[()])
+        C = float(theory.layer_punch(a, T, E1, NU1)[0])
         d, F = theory.layer_sphere([a], T, R, 0.0, E1, NU1)
         dev.append([1 - C / (8 * T ** 3 / (math.pi * E1 * a ** 4)),
                     F[0] / (math.pi * E1 * a ** 6 / (96 * R * T ** 3)) - 1,
@@ -80,6 +82,23 @@ def test_thin_limit_is_lubrication():
     assert np.all(dev > 0)
     assert np.all(dev[1] / dev[0] > 0.4) and np.all(dev[1] / dev[0] < 0.65), dev   # first order in T/a
     assert np.all(dev[1] < [0.15, 0.3, 0.1]), dev
+
+
+@pytest.mark.parametrize("aT", [1.7, 4.5, 10.0])
+def test_reference_against_a_finer_quadrature(aT):
+    """The library's quadrature against the same equation on four times the nodes in both
+    integrals and twice the cut-off (the flat punch's force at unit d)."""
+    a, T = 0.1, 0.1 / aT
+    n, m, xmax = 4 * (32 + int(12 * aT)), 4 * (64 + int(80 * aT)), 40.0
+    s, ws = np.polynomial.legendre.leggauss(n)
+    s, ws = 0.5 * a * (s + 1), 0.5 * a * ws
+    x, wx = np.polynomial.legendre.leggauss(m)
+    x, wx = 0.5 * xmax * (x + 1), 0.5 * xmax * wx
+    g = (1 - theory.layer_multiplier(x, NU1)) * wx * 2 / (math.pi * T)
+    cs = np.cos(np.multiply.outer(s, x) / T)
+    phi = np.linalg.solve(np.eye(n) - ((cs * g) @ cs.T) * ws, np.ones(n))
+    C = 1 / (2 * ES * (ws @ phi))
+    assert float(theory.layer_punch(a, T, E1, NU1)[0]) == pytest.approx(C, rel=1e-8)
 
 
 @pytest.mark.parametrize("T", [0.2, 0.05])
@@ -94,6 +113,18 @@ def test_reference_keeps_jkr_energy_balance(T):
         F_H = theory.layer_sphere([a], T, 1.0, 0.0, E1, NU1)[1][0]
         F = theory.layer_sphere([a], T, 1.0, g, E1, NU1)[1][0]
         assert F_H - math.sqrt(2 * g / abs(dCdA)) == pytest.approx(F, rel=1e-6), a
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: theory.layer_sphere([0.1], 0.0), "thickness"),
+    (lambda: theory.layer_punch([0.1], -1.0), "thickness"),
+    (lambda: theory.layer_sphere([0.1], 0.1, nu1=0.6), "Poisson"),
+    (lambda: theory.layer_pulloff(0.1, base="glued"), "bonded"),
+    (lambda: theory.layer_pulloff(1e-6, dgamma=2.8e-3), "range"),
+])
+def test_reference_refuses_bad_input(call, words):
+    with pytest.raises(ValueError, match=words):
+        call()
 
 
 def layer_run(N, T, **extra):
@@ -111,15 +142,17 @@ def test_punch_compliance_converges_to_the_reference():
                        steps=1) as s:
             c = s.solve_path()
         C = (c["d"][-1] - c["d"][-2]) / (c["force"][-1] - c["force"][-2])
-        err.append(C / float(theory.layer_punch(math.sqrt(c["area"][-1] / math.pi), T, E1, NU1)[()]) - 1)
+        err.append(C / float(theory.layer_punch(math.sqrt(c["area"][-1] / math.pi), T, E1, NU1)[0]) - 1)
     assert 0 < err[1] < 0.6 * err[0] and err[1] < 0.025, err
+    assert abs(2 * err[1] - err[0]) < 0.005, err          # first order: the extrapolation lands on it
 
 
 def test_pull_off_on_a_thin_layer():
     """JKR's sphere on an incompressible bonded layer (T = 0.05: the pull-off 1.46 times the
     half-space's, its contact radius 0.73 times) under force control, crack-closure on 128^2
     (a_c/h 18): the pull-off within 1% of the exact one (the half-space's lattice scatter at this
-    resolution), the contact radius along the unloading's stable branch within 3%."""
+    resolution), the contact radius along the unloading's stable branch within 4% (2.8% measured;
+    bench verify's 512^2 brings it to 0.6%)."""
     T, g = 0.05, 2.8e-3
     F_adh, a_c, _ = theory.layer_pulloff(T, 1.0, g, E1, NU1)
     F_half, a_half = theory.jkr_pulloff(1.0, g, ES)
@@ -134,4 +167,4 @@ def test_pull_off_on_a_thin_layer():
     assert on.sum() >= 10
     radii = np.linspace(a_c, 3 * a_c, 60)
     a_exact = np.interp(c["force"][on], theory.layer_sphere(radii, T, 1.0, g, E1, NU1)[1], radii)
-    assert np.max(np.abs(a[on] / a_exact - 1)) < 0.03
+    assert np.max(np.abs(a[on] / a_exact - 1)) < 0.04

@@ -12,7 +12,7 @@ contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
     ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--steps-with-grid] [--np P]
-        [--route fixed-point,minimize] [--smoothing 0.2] [--n N]
+        [--route fixed-point,minimize] [--smoothing 0.2] [--n N] [--force-control]
 
 --n N: every lambda on one N^2 grid (the domain the largest one a lambda needs), the zone's width
 then falling as lambda grows: the cost on the same sphere and grid.
@@ -23,8 +23,11 @@ then falling as lambda grows: the cost on the same sphere and grid.
 
 The table: lambda, the route, the grid, the zone's width in elements (from the run's resolution
 report), the largest tension over Maugis', the first-order extrapolation over Maugis' (the fixed
-point's order), the iterations (KSP or the minimisation's), FFT pairs (in all and a state) and CPU
-time.
+point's order), the largest distance of the contact radius (from its area) from Maugis' a(d) along
+the path in grid spacings (the states in contact on Maugis' branch), the iterations (KSP or the
+minimisation's), FFT pairs (in all and a state) and CPU time; with --force-control, the pull-off of
+the same case under force control (a Hertz start at 0.5 F_Maugis to -1.5 F_Maugis) over Maugis',
+with its FFT pairs and CPU time.
 """
 import argparse
 import math
@@ -37,6 +40,7 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from adhbem_build import EXE  # noqa: E402  (no PETSc, no MPI: this process starts mpirun)
+import numpy as np  # noqa: E402
 from adhbem.theory import maugis_pulloff, maugis_scales, maugis_sphere, tabor_lambda  # noqa: E402  (numpy only)
 
 GAMMA = 0.004655
@@ -56,17 +60,47 @@ def case(lam, width):
     return s0, N, N * h, -P * force, a, zone, D * dscale
 
 
-def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None):
-    """One run; grid = (N, L) puts it on that grid instead of the one its zone's width sizes."""
+def maugis_branch(lam):
+    """Maugis' contact radius against the indentation on the branch displacement control follows
+    (the radii beyond the turn of d(a)), in physical units: the arrays d, a increasing."""
+    _, ascale, dscale = maugis_scales(GAMMA)
+    A = np.geomspace(1e-3, 6.0, 600)
+    _, D, _ = maugis_sphere(lam, A)
+    k = int(np.argmin(D))
+    return D[k:] * dscale, A[k:] * ascale
+
+
+def radius_error(lam, d, area, h):
+    """The largest distance of the run's contact radius (from its area) from Maugis' at the same d,
+    in grid spacings, over the states in contact on Maugis' branch after the start."""
+    db, ab = maugis_branch(lam)
+    a_run = np.sqrt(np.asarray(area) / math.pi)
+    on = (a_run > 0) & (np.asarray(d) >= db[0])
+    on[0] = False                             # the start, Hertz's contact without adhesion
+    if not on.any():
+        return float("nan")
+    return float(np.max(np.abs(a_run[on] - np.interp(np.asarray(d)[on], db, ab))) / h)
+
+
+def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, force=False):
+    """One run; grid = (N, L) puts it on that grid instead of the one its zone's width sizes; force:
+    under force control from a compression of half the pull-off force to 1.5 times the pull-off in
+    tension (the leg ends at the pull-off, bisected to 1e-4)."""
     s0, N, L, F, a, zone, d_pull = case(lam, width)
     if grid:
         N, L = grid
     d0 = 0.5 * a * a  # a preload of about the pull-off contact's Hertz indentation
+    if force:  # from a Hertz start in compression, as the JKR sphere's verification
+        path = f"{0.5 * F!r},{-1.5 * F!r}"
+    else:
+        path = f"{d0!r},{2 * d_pull - 0.2 * d0!r}"
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "m.h5")
         cmd = ["mpirun", "--oversubscribe", "-n", str(np_), EXE, "-adh_n", str(N), "-adh_size", repr(L), "-adh_gamma", repr(GAMMA),
-               "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_path", f"{d0!r},{2 * d_pull - 0.2 * d0!r}",
+               "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_path", path,
                "-adh_steps", str(steps), "-adh_output", out, "-adh_progress", "0", "-adh_dugdale_route", route]
+        if force:
+            cmd += ["-adh_control", "force", "-adh_pulloff_rtol", "1e-4"]
         if route == "minimize":
             cmd += ["-adh_dugdale_smoothing", repr(smoothing)]
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -77,10 +111,11 @@ def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None):
         import h5py
         with h5py.File(out, "r") as f:
             tension = -float(f["curve/force"][()].min())
+            a_err = float("nan") if force else radius_error(lam, f["curve/d"][()], f["curve/area"][()], L / N)
             width_run = float(f.attrs.get("pull_off_cohesive_width", float("nan")))
             ksp, ffts = int(f["curve/ksp_iterations"][()].sum()), int(f["curve/fft_pairs"][()].sum())
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps)
+    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps, a_err=a_err)
 
 
 def main():
@@ -93,6 +128,9 @@ def main():
     ap.add_argument("--smoothing", type=float, default=0.2, help="the minimize route's -adh_dugdale_smoothing")
     ap.add_argument("--n", type=int, default=0, help="every lambda on this one grid (its domain the largest the lambdas need), "
                     "instead of grids sized to --widths: the cost of the same sphere and grid as lambda grows")
+    ap.add_argument("--force-control", action="store_true",
+                    help="also each case under force control (from a compression of half the pull-off force to 1.5 times "
+                    "the pull-off in tension, bisected to 1e-4): its pull-off over Maugis'")
     ap.add_argument("--steps-with-grid", action="store_true",
                     help="steps in proportion to the grid's N, --steps on the first case's grid: a step then moves the "
                     "contact's edge across about as many elements at every lambda and width")
@@ -110,7 +148,8 @@ def main():
         widths = widths[:1]
         grid = (a.n, max(case(lam, widths[0])[2] for lam in lambdas))
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
-    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'iterations':>10} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}")
+    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'a err/h':>8} {'iterations':>10} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}"
+          + (f" {'force control':>14} {'FFT pairs':>10} {'CPU s':>7}" if a.force_control else ""))
     N_ref = grid[0] if grid else case(lambdas[0], widths[0])[1]
 
     def steps(lam, w):
@@ -127,8 +166,12 @@ def main():
                     q = widths[k] / widths[k - 1]
                     f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
                     extra = f"{f_inf / r['exact']:.4f}"
-                print(f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} {r['ksp']:>10} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}",
-                      flush=True)
+                line = (f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} "
+                        f"{r['a_err']:>8.2f} {r['ksp']:>10} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}")
+                if a.force_control:
+                    fc = run(lam, widths[k], steps(lam, widths[k]), a.np, route, a.smoothing, grid, force=True)
+                    line += f" {fc['tension'] / fc['exact']:>14.4f} {fc['ffts']:>10} {fc['cpu']:>7.1f}"
+                print(line, flush=True)
 
 
 if __name__ == "__main__":

@@ -23,7 +23,12 @@ the end each JKR-limit criterion's difference from the finite-range limit. Count
 per run are printed as the runs finish (stderr) and kept in --json.
 
     ./run bench tabor [--config resolved|moderate|unresolved] [--hurst H] [--seed S] [--n N1,N2] [--lambdas L1,L2,...]
-        [--np P] [--steps K] [--quick] [--json FILE] [-- OPTIONS]
+        [--route fixed-point|minimize] [--criteria crack-closure,pohrt-popov|none] [--np P] [--steps K] [--quick]
+        [--json FILE] [-- OPTIONS]
+
+--route: how the dugdale runs find their zones (-adh_dugdale_route): the fixed point of set updates
+(Maugis' sharp law) or the energy minimisation of the law smoothed over -adh_dugdale_smoothing of
+its range. --criteria none runs the finite-range model alone.
 
 --quick: grids 48,96 and lambdas 0.5,1 (a smoke test of a few minutes; not the study). The zones at
 pull-off are about 0.4 a_c wide at lambda 1, 1.2 a_c at 0.5 and 0.13 a_c at 2 (a_c the asperities'
@@ -85,6 +90,10 @@ def main():
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument("--steps", type=int, default=25, help="steps per leg")
     ap.add_argument("--quick", action="store_true", help="grids 48,96 and lambdas 0.5,1: a smoke test")
+    ap.add_argument("--route", default="fixed-point", choices=("fixed-point", "minimize"),
+                    help="the dugdale runs' -adh_dugdale_route (default fixed-point)")
+    ap.add_argument("--criteria", default="crack-closure,pohrt-popov",
+                    help="the JKR-limit criteria run beside, comma-separated, or none (the finite-range runs alone)")
     ap.add_argument("--json", help="write all numbers to this JSON file")
     ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
     a = ap.parse_args()
@@ -94,6 +103,10 @@ def main():
         ap.error("--n: two grids or more, each twice the last")
     if len(lambdas) < 2 or any(not v > 0 for v in lambdas):
         ap.error("--lambdas: two or more positive values")
+    criteria = [] if a.criteria == "none" else [c.strip() for c in a.criteria.split(",") if c.strip()]
+    for crit in criteria:
+        if crit not in ("crack-closure", "pohrt-popov"):
+            ap.error(f"--criteria: unknown JKR-limit criterion '{crit}' (crack-closure, pohrt-popov, or none)")
     s, gamma, what = convergence.configuration(a.config, sizes[0], hurst=a.hurst, seed=a.seed)
     Z = {n: s.heights(n) for n in sizes}
     zmax = float(Z[sizes[-1]].max())
@@ -124,9 +137,10 @@ def main():
 
     for lam in lambdas:
         s0 = s0_for(lam, s, gamma)
-        runs[f"dugdale lambda {lam:g}"] = dict(s0=s0, range=gamma / s0, lam=lam,
-                                              grids=measure("dugdale", ["-adh_dugdale_stress", repr(s0)], f"dugdale-{lam:g}"))
-    for crit in ("crack-closure", "pohrt-popov"):
+        runs[f"dugdale lambda {lam:g}"] = dict(s0=s0, range=gamma / s0, lam=lam, route=a.route,
+                                              grids=measure("dugdale", ["-adh_dugdale_stress", repr(s0), "-adh_dugdale_route", a.route],
+                                                            f"dugdale-{lam:g}"))
+    for crit in criteria:
         runs[crit] = dict(grids=measure(crit, [], crit))
     # the table
     width = 12
@@ -145,8 +159,9 @@ def main():
         jkr = (f2 * big[1] - f1 * big[0]) / (big[1] - big[0])
         limits.setdefault("dugdale, zero range", {})[key] = jkr
         print(f"  {'dugdale, zero range':<24}" + " " * (width * len(sizes)) + f"{jkr:>{width}.5g}")
-    print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|):")
-    for crit in ("crack-closure", "pohrt-popov"):
+    if criteria:
+        print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|):")
+    for crit in criteria:
         parts = []
         for key, label in KEYS:
             ref = limits["dugdale, zero range"][key]

@@ -663,6 +663,7 @@ def case_layer(quick, out):
                 k = int(np.argmin(c["force"]))
                 # the contact radius along the unloading on JKR's stable branch (a > 1.1 a_c), against the exact one
                 on = (a_run > 1.1 * a_c) & (c["contact_points"] > 0)
+                on[0] = False                            # the Hertz start, not an adhesive state
                 a_th = np.interp(c["force"][on], F_th[stable], radii[stable])
                 res[T]["grids"][crit][N] = dict(ratio=r["pull_off"] / F_adh, a=float(a_run[k]) / a_c,
                                                 a_path=float(np.max(np.abs(a_run[on] / a_th - 1))) if on.any() else None,

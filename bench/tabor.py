@@ -113,6 +113,7 @@ def main():
     d1 = float(convergence.np.quantile(zmax - Z[sizes[-1]], 0.25))
     ac = s.jkr_radius(gamma)
     print(f"# The JKR limit on a rough cell, measured with finite-range adhesion ({a.config}: {what}; Hurst {a.hurst:g}, seed {a.seed})")
+    print("# path " + " -> ".join(f"{v:.5g}" for v in convergence.path(d1, 3)) + f", {a.steps} steps a leg, the run ending at pull-off")
     print(f"# dgamma {gamma:.6g}, asperity tip radius {s.tip_radius():.4g}, a_c {ac:.4g} = "
           + ", ".join(f"{ac * n / s.L:.3g}" for n in sizes) + f" spacings on grids {', '.join(map(str, sizes))}; d1 {d1:.5g}")
     K = 4.0 * convergence.E_STAR / 3.0
@@ -130,9 +131,11 @@ def main():
             c, attrs, cpu, wall = convergence.run(s, n, zmax - Z[n], d1, gamma, criterion, a.steps, a.np, 3, list(extra) + a.extra, None, tag)
             q, k = convergence.quantities(c, d1, s.L)
             zone = float(max(c["cohesive_area"])) if "cohesive_area" in c else 0.0
+            k["largest_tension_d"] = float(c["d"][int(convergence.np.argmin(c["force"]))])
             out[n] = dict(quantities=q, run=k, cpu=cpu, wall=wall, largest_zone_area=zone)
             print(f"[{tag} N = {n}: {k['states']} states, {k['set_updates']} set updates, {k['ksp']} KSP iterations, "
-                  f"{k['fft_pairs']} FFT pairs, CPU {cpu:.1f} s]", file=sys.stderr, flush=True)
+                  f"{k['fft_pairs']} FFT pairs, CPU {cpu:.1f} s, largest tension at d = {k['largest_tension_d']:.5g}, "
+                  + (f"pulled off at d = {k['pull_off_d']:.5g}]" if k["pulled_off"] else "still in contact at the path's end]"), file=sys.stderr, flush=True)
         return out
 
     for lam in lambdas:
@@ -159,6 +162,9 @@ def main():
         jkr = (f2 * big[1] - f1 * big[0]) / (big[1] - big[0])
         limits.setdefault("dugdale, zero range", {})[key] = jkr
         print(f"  {'dugdale, zero range':<24}" + " " * (width * len(sizes)) + f"{jkr:>{width}.5g}")
+    held = [f"{name} N = {n}" for name, r in runs.items() for n in sizes if not r["grids"][n]["run"]["pulled_off"]]
+    if held:  # their largest tension is the tension at the path's end, not a pull-off
+        print("\nStill in contact at the path's end (their largest tension is not a pull-off): " + ", ".join(held))
     if criteria:
         print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|):")
     for crit in criteria:

@@ -98,6 +98,11 @@ def test_one_rank_killed(tmp_path, ranks):
     took = time.monotonic() - killed
     print(f"\n{ranks} ranks: mpirun ended {took:.2f} s after a rank was killed")
     assert rc != 0 and took < 15
+    # no rank outlives the job: on a loaded machine the last one may still be exiting when mpirun
+    # returns (gone within half a second), so it gets a few seconds, not the job's lifetime
+    deadline = time.monotonic() + 5
+    while ranks_of(p.pid) and time.monotonic() < deadline:
+        time.sleep(0.1)
     assert not ranks_of(p.pid)
     rows = journal_rows(tmp_path / "job.csv.part")
     assert rows >= 3

@@ -23,12 +23,12 @@ the end each JKR-limit criterion's difference from the finite-range limit. Count
 per run are printed as the runs finish (stderr) and kept in --json.
 
     ./run bench tabor [--config resolved|moderate|unresolved] [--hurst H] [--seed S] [--n N1,N2] [--lambdas L1,L2,...]
-        [--route fixed-point|minimize] [--criteria crack-closure,pohrt-popov|none] [--np P] [--steps K] [--quick]
+        [--route minimize|fixed-point] [--criteria crack-closure,pohrt-popov|none] [--np P] [--steps K] [--quick]
         [--json FILE] [-- OPTIONS]
 
---route: how the dugdale runs find their zones (-adh_dugdale_route): the fixed point of set updates
-(Maugis' sharp law) or the energy minimisation of the law smoothed over -adh_dugdale_smoothing of
-its range. --criteria none runs the finite-range model alone.
+--route: how the dugdale runs find their zones (-adh_dugdale_route): the energy minimisation of the
+law smoothed over -adh_dugdale_smoothing of its range (adhbem's default) or the fixed point of set
+updates (Maugis' sharp law). --criteria none runs the finite-range model alone.
 
 --quick: grids 48,96 and lambdas 0.5,1 (a smoke test of a few minutes; not the study). The zones at
 pull-off are about 0.4 a_c wide at lambda 1, 1.2 a_c at 0.5 and 0.13 a_c at 2 (a_c the asperities'
@@ -90,8 +90,8 @@ def main():
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument("--steps", type=int, default=25, help="steps per leg")
     ap.add_argument("--quick", action="store_true", help="grids 48,96 and lambdas 0.5,1: a smoke test")
-    ap.add_argument("--route", default="fixed-point", choices=("fixed-point", "minimize"),
-                    help="the dugdale runs' -adh_dugdale_route (default fixed-point)")
+    ap.add_argument("--route", default="minimize", choices=("minimize", "fixed-point"),
+                    help="the dugdale runs' -adh_dugdale_route (default minimize, adhbem's)")
     ap.add_argument("--criteria", default="crack-closure,pohrt-popov",
                     help="the JKR-limit criteria run beside, comma-separated, or none (the finite-range runs alone)")
     ap.add_argument("--json", help="write all numbers to this JSON file")

@@ -32,10 +32,17 @@ static PetscErrorCode WriteContactMask(AdhSolver s, PetscViewer viewer, PetscInt
   count[1]  = (hsize_t)ym;
   count[2]  = (hsize_t)g->Nx;
   PetscCall(PetscMalloc1(s->nlocal + 1, &mask));
-  { /* 1 in contact, 2 in a cohesive zone (a traction off the set: -adh_criterion dugdale), 0 free */
-    const PetscScalar *pa;
+  { /* 1 in contact, 2 in a cohesive zone (the curve's cohesive_area counts the same points), 0 free */
+    const PetscScalar *pa, *ga, *gamma = NULL;
     PetscCall(VecGetArrayRead(s->p, &pa));
-    for (PetscInt k = 0; k < s->nlocal; k++) mask[k] = s->in_set[k] ? 1 : PetscRealPart(pa[k]) != 0 ? 2 : 0;
+    PetscCall(VecGetArrayRead(s->g, &ga));
+    if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gamma));
+    for (PetscInt k = 0; k < s->nlocal; k++) {
+      const PetscReal dgamma = gamma ? PetscRealPart(gamma[k]) : s->gamma;
+      mask[k] = s->in_set[k] ? 1 : AdhSolverInCohesiveZone_Private(s, PetscRealPart(pa[k]), PetscRealPart(ga[k]), dgamma) ? 2 : 0;
+    }
+    if (gamma) PetscCall(VecRestoreArrayRead(s->gamma_field, &gamma));
+    PetscCall(VecRestoreArrayRead(s->g, &ga));
     PetscCall(VecRestoreArrayRead(s->p, &pa));
   }
   ierr = AdhH5WriteBlock_Private(dset, H5T_NATIVE_UCHAR, 3, offset, count, mask);

@@ -403,6 +403,12 @@ static inline PetscBool AdhSolverIsAdhesive_Private(AdhSolver s)
 {
   return (PetscBool)(s->adhesive && (s->Sigma > 0 || s->Sigma_field));
 }
+/* A point off the contact set is in the cohesive zone: it carries a traction p, and under a law its
+   gap g is within the law's zone gap (a law's tail may reach further). */
+static inline PetscBool AdhSolverInCohesiveZone_Private(AdhSolver s, PetscReal p, PetscReal g, PetscReal dgamma)
+{
+  return (PetscBool)(p != 0 && (!s->crops.zone_gap || g <= s->crops.zone_gap(s->crops.data, dgamma)));
+}
 PETSC_INTERN PetscErrorCode AdhSolverApplyOnSet_Private(AdhSolver, Mat, Vec, Vec);
 PETSC_INTERN PetscErrorCode AdhSolverSelectOperator_Private(AdhSolver);
 PETSC_INTERN PetscErrorCode AdhSolverOperatorIndices_Private(AdhSolver, PetscInt, const PetscInt *, PetscInt *);

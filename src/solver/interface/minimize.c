@@ -737,10 +737,25 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     PetscCall(VecSum(s->g, &sum));
     s->d = s->mean_h - PetscRealPart(sum) / N;
   }
-  {
-    const PetscScalar *ga;
+  { /* and off the wall, where the law pulls with nothing (beyond its support, or on a stage
+       without adhesion), no traction: the elastic pressure there is the residual gradient (within
+       -adh_minimize_rtol of the field), dropped so that the pressure field is 0 off the contact and
+       the zone, as on a set's route */
+    const PetscScalar *ga, *gf = NULL;
+    PetscScalar       *pa;
     PetscCall(VecGetArrayRead(s->g, &ga));
-    for (PetscInt k = 0; k < s->nlocal; k++) s->in_set[k] = (char)(PetscRealPart(ga[k]) <= 0);
+    PetscCall(VecGetArray(s->p, &pa));
+    if (s->gamma_field) PetscCall(VecGetArrayRead(s->gamma_field, &gf));
+    for (PetscInt k = 0; k < s->nlocal; k++) {
+      const PetscReal g = PetscRealPart(ga[k]), dg = !s->adhesive ? 0.0 : gf ? PetscRealPart(gf[k]) : s->gamma;
+      PetscReal       phi = 0.0, dphi = 0.0, ddphi = 0.0;
+      s->in_set[k] = (char)(g <= 0);
+      if (s->in_set[k]) continue;
+      if (dg > 0) s->crops.law(s->crops.data, dg, g, &phi, &dphi, &ddphi);
+      if (dphi == 0) pa[k] = 0.0;
+    }
+    if (gf) PetscCall(VecRestoreArrayRead(s->gamma_field, &gf));
+    PetscCall(VecRestoreArray(s->p, &pa));
     PetscCall(VecRestoreArrayRead(s->g, &ga));
   }
   PetscCall(AdhSolverRebuildSet_Private(s));

@@ -218,7 +218,7 @@ PetscErrorCode AdhStatisticsCompute_Private(AdhSolver s, AdhState *st)
     if (!s->in_set[k]) { /* a traction off the set: a cohesive zone's (a law's: within its zone gap) */
       if (p != 0) {
         const PetscReal dgamma = gamma ? PetscRealPart(gamma[k]) : s->gamma;
-        in_zone[k] = (PetscBool)(!s->crops.zone_gap || PetscRealPart(ga[k]) <= s->crops.zone_gap(s->crops.data, dgamma));
+        in_zone[k] = AdhSolverInCohesiveZone_Private(s, p, PetscRealPart(ga[k]), dgamma);
         if (in_zone[k]) zone[0] += A;
         zone[1] += p * A;
       }

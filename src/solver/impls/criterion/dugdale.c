@@ -5,13 +5,14 @@
    A point in contact (gap 0) carries whatever pressure the solve gives and leaves the contact when its tension
    exceeds s0; a point off the contact whose gap is at most the range carries the tension s0 (the cohesive zone);
    beyond the range, nothing. The work of separation is s0 times the range, dgamma. A step finds the three sets
-   (contact, cohesive zone, free) consistent at its indentation or force: by the fixed point of set updates (the
-   default), or by minimising the energy of the law with its drop at the range smoothed (-adh_dugdale_route minimize).
+   (contact, cohesive zone, free) consistent at its indentation or force: by minimising the energy of the law with its
+   drop at the range smoothed (the default), or by the fixed point of set updates on the sharp law
+   (-adh_dugdale_route fixed-point, Maugis' law as he wrote it).
 
    Options Database Keys:
 +  -adh_criterion dugdale                       - selects this criterion
 .  -adh_dugdale_stress <s0>                     - the cohesive stress s0 (required, > 0); the range is dgamma/s0
-.  -adh_dugdale_route <fixed-point,minimize>    - how a step finds the zone
+.  -adh_dugdale_route <minimize,fixed-point>    - how a step finds the zone
 -  -adh_dugdale_smoothing <0.2>                 - minimize: the tension falls from s0 to 0 linearly between the gaps
                                                   range (1 - e) and range (1 + e), the work dgamma kept
 
@@ -24,21 +25,25 @@
    it for a sphere. With a work of adhesion field dgamma(x, y) the range varies, dgamma(x, y)/s0, and s0 is the same
    everywhere (a point with dgamma = 0 holds no tension).
 
-   The cohesive tractions are held in the pressure p off the contact set: the force, the pressure field and the gap
-   include them, and the set's solves take their load (one compliance multiply more per solve). The zone is updated
+   With the default route each state is a minimum of the total energy (the elastic energy plus the smoothed law's
+   potential, the wall g >= 0 as a bound) reached from the last, as for `ADHCRITERIONEXPONENTIAL`; its cost does not
+   blow up as the zone narrows, and the smoothing makes the pull-off converge faster with the grid (Maugis' sphere at
+   lambda 1: within 0.3% on 64^2 and 0.1% on 128^2, where the fixed point is 6% and 3% off; on a rough cell the
+   largest tension is converged on 128^2 where the fixed point's still moves 1-2% a refinement at 512^2). Both
+   controls on both boundaries; the
+   -adh_minimize_ options apply. In the zone's pressure field the tension is s0 up to the gap range (1 - e) and falls
+   to 0 at range (1 + e).
+
+   With -adh_dugdale_route fixed-point the cohesive tractions are held in the pressure p off the contact set: the
+   force, the pressure field and the gap include them, and the set's solves take their load (one compliance multiply
+   more per solve). The zone is updated
    with the contact: a set update lets go the contact points whose tension exceeds s0 and moves the zone's edge to
    where the gap is the range, and the set is solved again, until nothing changes; then the points that penetrate
    join (the attach rule penetration, its default). A point that has left the zone three times in one step stays out
    of it for the rest of the step, so that the updates end: the zone's points switch all at once, and where the zone
    is narrower than an element (s0 well above Sigma) they can otherwise flip back and forth for ever; such a state
    is not quite an equilibrium of the model, and -info :adhsolver says how many points were kept out. -adh_critical_stress, -adh_cascade_apart, -adh_cascade_local and
-   the certified early stop do not apply.
-
-   With -adh_dugdale_route minimize each state is a minimum of the total energy (the elastic energy plus the smoothed
-   law's potential, the wall g >= 0 as a bound) reached from the last, as for `ADHCRITERIONEXPONENTIAL`; its cost does
-   not blow up as the zone narrows, and the smoothing makes the pull-off converge faster with the grid (Maugis' sphere
-   at lambda 1: within 0.3% on 64^2 and 0.1% on 128^2, where the fixed point is 6% and 3% off). Both controls on both
-   boundaries; the -adh_minimize_ options apply.
+   the certified early stop do not apply (on either route).
 
 .seealso: `AdhSolverSetCriterionType()`, `ADHCRITERIONCRACKCLOSURE`, `ADHCRITERIONPOHRTPOPOV`
 M*/
@@ -190,7 +195,7 @@ static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, AdhOptionItems PetscOp
   PetscFunctionBegin;
   PetscCall(AdhOptionsReal("-adh_dugdale_stress", "dugdale: the cohesive stress s0, the tension the surfaces hold while their gap is at most the range dgamma/s0 (required with -adh_criterion dugdale)", "ADHCRITERIONDUGDALE", dd->s0, &dd->s0, NULL));
   PetscCheck(dd->s0 == 0 || (dd->s0 > 0 && !PetscIsInfOrNanReal(dd->s0)), PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_stress must be > 0 and finite, got %g", (double)dd->s0);
-  PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
+  PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing; the default) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
   PetscCall(AdhOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
   PetscCheck(dd->smoothing > 0 && dd->smoothing < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_smoothing must lie in (0, 1), got %g", (double)dd->smoothing);
   /* the route decides the kind of step: a law minimises, none updates sets */
@@ -312,7 +317,7 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&dd));
-  dd->route                    = ADH_DUGDALE_FIXED_POINT;
+  dd->route                    = ADH_DUGDALE_MINIMIZE; /* more accurate at the same cost: docs/theory/minimisation.md */
   dd->smoothing                = 0.2;
   s->crops.data                = dd;
   s->crops.attach              = ADH_ATTACH_PENETRATION;

@@ -26,6 +26,9 @@ per run are printed as the runs finish (stderr) and kept in --json.
         [--route minimize|fixed-point] [--criteria crack-closure,pohrt-popov|none] [--np P] [--steps K] [--quick]
         [--json FILE] [-- OPTIONS]
 
+--criteria: the JKR-limit criteria beside, each with its default attach rule (griffith with
+crack-closure, reach with pohrt-popov) or the one after a slash (crack-closure/reach).
+
 --route: how the dugdale runs find their zones (-adh_dugdale_route): the energy minimisation of the
 law smoothed over -adh_dugdale_smoothing of its range (adhbem's default) or the fixed point of set
 updates (Maugis' sharp law). --criteria none runs the finite-range model alone.
@@ -46,6 +49,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 spec = importlib.util.spec_from_file_location("bench_convergence", os.path.join(ROOT, "bench", "convergence.py"))
 convergence = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(convergence)
+
+# A lambda's grid limit counts as resolved, and enters the zero-range limit, when its error bar
+# is within this share of its value.
+RESOLVED = 0.01
 
 KEYS = (("largest_tension", "largest tension (-min F)"),
         ("loop_energy", "energy dissipated over the loop"),
@@ -80,13 +87,77 @@ def grid_limit(values):
     return first_order(values)
 
 
+def limit_and_error(name, run, sizes, key):
+    """A run's grid limit and its error bar (the distance of the finest grid from it). The fixed
+    point of set updates converges at first order (the zone's edge snaps to an element); the other
+    runs by Richardson's estimate with the order three grids show (first order from two)."""
+    vals = [run["grids"][n]["quantities"][key] for n in sizes]
+    fixed = name.startswith("dugdale") and run.get("route", "fixed-point") == "fixed-point"
+    lim = first_order(vals) if fixed else grid_limit(vals)
+    return vals, lim, abs(lim - vals[-1]) if math.isfinite(lim) else float("nan")
+
+
+def zero_range(limits, lambdas, key):
+    """f = f_JKR + c / lambda through the two largest lambdas whose grid limits are resolved (an
+    error bar within RESOLVED of the value); the error bar is their grid errors carried through,
+    plus, with a third resolved lambda, how far the next pair down puts it (the form's own error).
+    Returns the limit, its error bar and the lambdas used."""
+    ok = [v for v in sorted(lambdas) if math.isfinite(limits[f"dugdale lambda {v:g}"][key][0])
+          and limits[f"dugdale lambda {v:g}"][key][1] <= RESOLVED * abs(limits[f"dugdale lambda {v:g}"][key][0])]
+    if len(ok) < 2:
+        return float("nan"), float("nan"), ok
+    a, b = ok[-2:]
+    (f1, e1), (f2, e2) = (limits[f"dugdale lambda {v:g}"][key] for v in (a, b))
+    jkr = (b * f2 - a * f1) / (b - a)
+    err = (b * e2 + a * e1) / (b - a)
+    if len(ok) >= 3:
+        a2, b2 = ok[-3:-1]
+        (g1, _), (g2, _) = (limits[f"dugdale lambda {v:g}"][key] for v in (a2, b2))
+        err += abs(jkr - (b2 * g2 - a2 * g1) / (b2 - a2))
+    return jkr, err, ok
+
+
+def report(runs, sizes):
+    """The table: every run's values, its grid limit with its error bar, the zero-range limit, and
+    each JKR-limit criterion against it."""
+    width = 12
+    lambdas = sorted(r["lam"] for r in runs.values() if "lam" in r)
+    criteria = [name for name, r in runs.items() if "lam" not in r]
+    print(f"\n{'run':<26}" + "".join(f"{'N = ' + str(n):>{width}}" for n in sizes) + f"{'grid limit':>{width + 10}}")
+    limits = {}
+    for key, label in KEYS:
+        print(f"\n{label}")
+        for name, r in runs.items():
+            vals, lim, err = limit_and_error(name, r, sizes, key)
+            limits.setdefault(name, {})[key] = (lim, err)
+            print(f"  {name:<24}" + "".join(f"{v:>{width}.5g}" for v in vals) + f"{lim:>{width}.5g} +- {err:<7.2g}")
+        if len(lambdas) >= 2:
+            jkr, err, used = zero_range(limits, lambdas, key)
+            limits.setdefault("dugdale, zero range", {})[key] = (jkr, err)
+            print(f"  {'dugdale, zero range':<24}" + " " * (width * len(sizes)) + f"{jkr:>{width}.5g} +- {err:<7.2g}"
+                  + f" (lambda {', '.join(f'{v:g}' for v in used[-3:])}; the others' grid limits off by more than {RESOLVED:.0%})")
+    held = [f"{name} N = {n}" for name, r in runs.items() for n in sizes if not r["grids"][n]["run"]["pulled_off"]]
+    if held:  # their largest tension is the tension at the path's end, not a pull-off
+        print("\nStill in contact at the path's end (their largest tension is not a pull-off): " + ", ".join(held))
+    if criteria and len(lambdas) >= 2:
+        print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|,"
+              " +- the two error bars added):")
+    for crit in criteria if len(lambdas) >= 2 else ():
+        parts = []
+        for key, label in KEYS:
+            (ref, eref), (c, ec) = limits["dugdale, zero range"][key], limits[crit][key]
+            parts.append(f"{key} {(c - ref) / abs(ref):+.1%} +- {(ec + eref) / abs(ref):.1%}" if ref else f"{key} n/a")
+        print(f"  {crit:<26} " + ", ".join(parts))
+    return limits
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--config", default="resolved", choices=("resolved", "moderate", "unresolved"))
     ap.add_argument("--hurst", type=float, default=0.8, help="the surface's Hurst exponent (default 0.8)")
     ap.add_argument("--seed", type=int, default=1, help="the surface's random seed (default 1)")
     ap.add_argument("--n", help="grids N1,N2[,N3] (each twice the last; default 64,128,256)")
-    ap.add_argument("--lambdas", help="Tabor-Maugis parameters of the smallest asperities (default 0.5,1,2)")
+    ap.add_argument("--lambdas", help="Tabor-Maugis parameters of the smallest asperities (default 0.5,1,2), or none (the criteria alone)")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument("--steps", type=int, default=25, help="steps per leg")
     ap.add_argument("--quick", action="store_true", help="grids 48,96 and lambdas 0.5,1: a smoke test")
@@ -95,18 +166,25 @@ def main():
     ap.add_argument("--criteria", default="crack-closure,pohrt-popov",
                     help="the JKR-limit criteria run beside, comma-separated, or none (the finite-range runs alone)")
     ap.add_argument("--json", help="write all numbers to this JSON file")
+    ap.add_argument("--from-json", help="run nothing: the table of the runs in these --json files (comma-separated, one surface and grid set)")
     ap.add_argument("extra", nargs="*", help="further adhbem options, after --")
     a = ap.parse_args()
+    if a.from_json:
+        return from_json(ap, a.from_json.split(","))
     sizes = [int(v) for v in a.n.split(",")] if a.n else [48, 96] if a.quick else [64, 128, 256]
-    lambdas = [float(v) for v in a.lambdas.split(",")] if a.lambdas else [0.5, 1.0] if a.quick else [0.5, 1.0, 2.0]
+    lambdas = [] if a.lambdas == "none" else [float(v) for v in a.lambdas.split(",")] if a.lambdas else [0.5, 1.0] if a.quick else [0.5, 1.0, 2.0]
     if len(sizes) < 2 or any(m != 2 * n for n, m in zip(sizes, sizes[1:])):
         ap.error("--n: two grids or more, each twice the last")
-    if len(lambdas) < 2 or any(not v > 0 for v in lambdas):
-        ap.error("--lambdas: two or more positive values")
+    if len(lambdas) == 1 or any(not v > 0 for v in lambdas):
+        ap.error("--lambdas: two or more positive values, or none")
     criteria = [] if a.criteria == "none" else [c.strip() for c in a.criteria.split(",") if c.strip()]
-    for crit in criteria:
-        if crit not in ("crack-closure", "pohrt-popov"):
-            ap.error(f"--criteria: unknown JKR-limit criterion '{crit}' (crack-closure, pohrt-popov, or none)")
+    if not lambdas and not criteria:
+        ap.error("--lambdas none --criteria none: nothing to run")
+    for crit in criteria:  # criterion[/attach rule]: the criterion's default attach rule without
+        rule, _, attach = crit.partition("/")
+        if rule not in ("crack-closure", "pohrt-popov") or attach not in ("", "griffith", "reach", "penetration"):
+            ap.error(f"--criteria: unknown JKR-limit criterion '{crit}' (crack-closure or pohrt-popov, each with an optional "
+                     "/griffith, /reach or /penetration attach rule, or none)")
     s, gamma, what = convergence.configuration(a.config, sizes[0], hurst=a.hurst, seed=a.seed)
     Z = {n: s.heights(n) for n in sizes}
     zmax = float(Z[sizes[-1]].max())
@@ -145,41 +223,37 @@ def main():
                                                             f"dugdale-{lam:g}"))
     for crit in criteria:
         runs[crit] = dict(grids=measure(crit, [], crit))
-    # the table
-    width = 12
-    print(f"\n{'run':<26}" + "".join(f"{'N = ' + str(n):>{width}}" for n in sizes) + f"{'grid limit':>{width}}")
-    limits = {}
-    for key, label in KEYS:
-        print(f"\n{label}")
-        for name, r in runs.items():
-            vals = [r["grids"][n]["quantities"][key] for n in sizes]
-            lim = first_order(vals) if name.startswith("dugdale") else grid_limit(vals)
-            limits.setdefault(name, {})[key] = lim
-            print(f"  {name:<24}" + "".join(f"{v:>{width}.5g}" for v in vals) + f"{lim:>{width}.5g}")
-        big = sorted(lambdas)[-2:]
-        f1, f2 = (limits[f"dugdale lambda {v:g}"][key] for v in big)
-        # f = f_JKR + c / lambda through the two largest lambdas
-        jkr = (f2 * big[1] - f1 * big[0]) / (big[1] - big[0])
-        limits.setdefault("dugdale, zero range", {})[key] = jkr
-        print(f"  {'dugdale, zero range':<24}" + " " * (width * len(sizes)) + f"{jkr:>{width}.5g}")
-    held = [f"{name} N = {n}" for name, r in runs.items() for n in sizes if not r["grids"][n]["run"]["pulled_off"]]
-    if held:  # their largest tension is the tension at the path's end, not a pull-off
-        print("\nStill in contact at the path's end (their largest tension is not a pull-off): " + ", ".join(held))
-    if criteria:
-        print("\nThe JKR-limit criteria against the finite-range limit (grid limits; (criterion - zero range) / |zero range|):")
-    for crit in criteria:
-        parts = []
-        for key, label in KEYS:
-            ref = limits["dugdale, zero range"][key]
-            parts.append(f"{key} {(limits[crit][key] - ref) / abs(ref):+.1%}" if ref else f"{key} n/a")
-        print(f"  {crit:<14} " + ", ".join(parts))
+    limits = report(runs, sizes)
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(convergence.finite(dict(config=a.config, hurst=a.hurst, seed=a.seed, grids=sizes, lambdas=lambdas, gamma=gamma, d1=d1,
+            json.dump(convergence.finite(dict(config=a.config, hurst=a.hurst, seed=a.seed, steps=a.steps, grids=sizes, lambdas=lambdas, gamma=gamma, d1=d1,
                                               a_c=ac, tip_radius=s.tip_radius(), runs={k: dict(v, grids={str(n): g for n, g in v["grids"].items()})
                                                                                        for k, v in runs.items()},
                                               limits=limits)), f, indent=1)
         print(f"\nwrote {a.json}")
+
+
+def from_json(ap, files):
+    """The table of runs saved by --json, merged from several files of one surface (the dugdale
+    runs in one job, the criteria in another): a study run across batch jobs."""
+    runs, first = {}, None
+    for path in files:
+        try:
+            with open(path) as f:
+                d = json.load(f)
+        except (OSError, ValueError) as e:
+            ap.error(f"--from-json: cannot read {path}: {e}")
+        same = ("config", "hurst", "seed", "grids", "gamma", "d1")
+        if first is None:
+            first = d
+        elif any(d.get(k) != first.get(k) for k in same):
+            ap.error(f"--from-json: {path} is another surface, grid set or path than {files[0]} (" + ", ".join(
+                f"{k} {d.get(k)} against {first.get(k)}" for k in same if d.get(k) != first.get(k)) + ")")
+        for name, r in d["runs"].items():
+            runs[name] = dict(r, grids={int(n): g for n, g in r["grids"].items()})
+    print(f"# The JKR limit on a rough cell ({first['config']}, Hurst {first['hurst']:g}, seed {first['seed']}), from "
+          + ", ".join(files) + f"; d1 {first['d1']:.5g}")
+    report(runs, first["grids"])
 
 
 if __name__ == "__main__":

@@ -485,8 +485,8 @@ class Solver:
           ``contact_perimeter`` and ``cohesive_perimeter``; under 10 the
           pull-off force depends on the grid; 0.0: no zone);
         - ``resolved``: the verdict (``None`` before a state carried tension);
-        - ``unresolved``: why not, the rule's parts that failed there: ``"patches"`` (more than 10% of
-          the tension on patches under 314 elements), ``"asperities"`` (``asperity_contact_radius``
+        - ``unresolved``: why not, the rule's parts that failed there: ``"patches"`` (a zero-range
+          criterion's: more than 10% of the tension on patches under 314 elements), ``"asperities"`` (``asperity_contact_radius``
           under 10), ``"zone"`` (the cohesive zone under 10 spacings wide); empty when resolved;
         - ``apart``: the first curve row where the surfaces came apart (-1: they did not, and the
           largest tension is no pull-off force); ``full_contact``: the first row in full contact,

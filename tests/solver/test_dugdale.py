@@ -122,6 +122,23 @@ def test_pulloff_near_dmt(route, tolerance):
     assert abs(F / (-P * FSCALE) - 1) < tolerance
 
 
+def test_a_wide_zone_around_a_small_contact_is_resolved():
+    """Near DMT (lambda 0.3, 64^2) the contact at pull-off is a small disk whose zone is 22 elements
+    wide: the contact patch carries all of the contact's tension, which would make a zero-range
+    criterion's pull-off depend on the grid, but here the zone carries the tension and its edge is
+    not singular, so the report says the grid resolves it (the pull-off is within 0.2%:
+    test_pulloff_near_dmt)."""
+    serial_only()
+    with adhbem.Solver(n=64, gamma=GAMMA, criterion="dugdale", dugdale_stress=s0_for(0.3), path=[0.04, -0.08],
+                       steps=120, progress=False) as s:
+        s.solve_path()
+        r = s.resolution
+    say(f"\ndugdale lambda 0.3, 64^2: zone {r['cohesive_width']:.1f} spacings, {r['small_patch_tension']:.0%} of the contact's "
+        f"tension on small patches; resolved {r['resolved']}")
+    assert r["small_patch_tension"] > 0.5 and r["cohesive_width"] > 10
+    assert r["resolved"] is True and not r["unresolved"]
+
+
 @pytest.mark.parametrize("route", ROUTES)
 def test_force_control_pulls_off_at_the_same_tension(route):
     """Under force control the contact comes off at the largest tension (bisected to

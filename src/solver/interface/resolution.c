@@ -81,13 +81,15 @@ PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
 #define ADH_RESOLVED_ZONE 10
 
 /* Why the grid does not resolve the adhesion at state st (ADH_UNRESOLVED_* flags; 0: it does): the
-   patches that carry the tension must be large, and so must the smallest asperities' contacts and
-   a finite-range criterion's cohesive zone. The one rule of every verdict (line, results file, Python). */
+   patches that carry the tension must be large (a zero-range criterion's: the stress at their edge
+   is singular; a finite-range criterion's edge is not, its zone carries the tension and must be
+   wide), and so must the smallest asperities' contacts. The one rule of every verdict (line,
+   results file, Python). */
 PetscInt AdhSolverUnresolved_Private(AdhSolver s, const AdhState *st)
 {
   const PetscReal width = AdhSolverCohesiveWidth_Private(s, st);
   PetscInt        why   = 0;
-  if (st->small_patch_tension > ADH_RESOLVED_SHARE) why |= ADH_UNRESOLVED_PATCHES;
+  if (!s->crops.cohesive && st->small_patch_tension > ADH_RESOLVED_SHARE) why |= ADH_UNRESOLVED_PATCHES;
   if (s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS) why |= ADH_UNRESOLVED_ASPERITIES;
   if (width > 0 && width < ADH_RESOLVED_ZONE) why |= ADH_UNRESOLVED_ZONE;
   return why;
@@ -157,10 +159,12 @@ PetscReal AdhSolverCohesiveWidth_Private(AdhSolver s, const AdhState *st)
   without adhesion, with -adh_critical_stress, and for other profiles. It is made at set-up and whenever the profile
   or the dgamma field changes.
 
-  The verdict r->resolved, meaningful when r->state >= 0: at most 10% of the tension at the largest tension is carried
-  by patches of fewer than `ADH_RESOLVED_PATCH` points, the estimate, if there is one, is at least 10 grid spacings,
-  and a finite-range criterion's cohesive zone, if there is one, is at least 10 grid spacings wide (a sphere's pull-off
-  force converges at first order, about 0.4/width relative). r->cohesive_elements gives the elements the zone covers
+  The verdict r->resolved, meaningful when r->state >= 0: with a zero-range criterion at most 10% of the tension at the
+  largest tension is carried by patches of fewer than `ADH_RESOLVED_PATCH` points; the estimate, if there is one, is
+  at least 10 grid spacings; and a finite-range criterion's cohesive zone, if there is one, is at least 10 grid
+  spacings wide (by the fixed point a sphere's pull-off force converges at first order, about 0.4/width relative). A
+  finite-range criterion's small patches are not a reason: their edges are not singular, and the zone around them
+  carries the tension. r->cohesive_elements gives the elements the zone covers
   at that state and r->cohesive_width its width: a sphere's annulus, or on any other profile the zone's area over the
   mean of its inner and outer edges (the state's contact_perimeter and cohesive_perimeter). Computed from the curve, so the same on every rank.
 
@@ -259,6 +263,8 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
     PetscCall(AdhSolverUnresolvedWords_Private(s, &s->curve.state[r.state], r.unresolved, why, sizeof(why)));
     PetscCall(PetscSNPrintf(verdict, sizeof(verdict), "the %s depends on the grid (%s); refine it (the same surface on a finer grid) until it no longer changes", r.apart >= 0 ? "pull-off force" : "largest tension", why));
   }
-  PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, verdict));
+  if (s->crops.cohesive) /* the zone's width decides, not the patches' size */
+    PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", smallest[0] ? smallest + 1 : "", verdict));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension (state %" PetscInt_FMT ", F = %g%s) %.0f%% of the tension is carried by contact patches of fewer than %d elements (a disk of radius %d)%s: %s\n", r.state, (double)r.force, r.apart >= 0 ? "" : ", not a pull-off: the surfaces did not come apart", 100.0 * (double)r.small_patch_tension, ADH_RESOLVED_PATCH, ADH_RESOLVED_RADIUS, smallest, verdict));
   PetscFunctionReturn(0);
 }

@@ -12,7 +12,8 @@ parameter of the smallest asperities (as ./run bench tabor). The path is the ind
 first touch to d1 (a quarter of the gap profile below it) and back to -d1/2 in --steps steps a leg,
 under displacement control: adhbem's d is Tamaas' mean gap mean(h) - d (the periodic compliance has
 no mean mode), each Tamaas solve warm-started from the previous state as adhbem's steps are.
-Tamaas runs with E = 1, nu = 0 (E* = 1) to --tolerance; adhbem with its defaults.
+Tamaas runs with E = 1, nu = 0 (E* = 1) to --tolerance; adhbem with its defaults but the route:
+the sharp law's fixed point (-adh_dugdale_route fixed-point), the law Tamaas' functional is.
 
 The table gives per state both forces and contact and zone counts. The cohesive law has several
 equilibria at one d where the path passes a jump: each solver picks one, from its previous
@@ -94,7 +95,8 @@ def main():
         np.save(hfile, np.ascontiguousarray(h))
         cmd = [convergence.EXE, "-adh_n", str(a.n), "-adh_size", repr(s.L), "-adh_boundary", "periodic",
                "-adh_indenter", "file", "-adh_topography", hfile, "-adh_topography_kind", "gap", "-adh_gamma", repr(gamma),
-               "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_start", "adhesive",
+               "-adh_criterion", "dugdale", "-adh_dugdale_stress", repr(s0), "-adh_dugdale_route", "fixed-point",  # Tamaas' law is the sharp one
+               "-adh_start", "adhesive",
                "-adh_path", ",".join(repr(v) for v in path), "-adh_steps", str(a.steps), "-adh_output", out, "-adh_progress", "0"] + a.extra
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))

@@ -33,7 +33,8 @@ E* = 1 throughout.
   unloaded to pull-off, lam/h 128 to 2048, both criteria (each with its default attach rule): the
   mean pressure against the contact half-width (from the area) beside adhbem.theory.johnson_wave
   (lam/h 256), and the pull-off (the largest tension) over Johnson's minimum of p.
-- maugis: the Maugis-Dugdale sphere (criterion dugdale, lambda 1, dgamma 0.004655): the pull-off
+- maugis: the Maugis-Dugdale sphere (criterion dugdale by the sharp law's fixed point, whose
+  first-order convergence the extrapolation assumes; lambda 1, dgamma 0.004655): the pull-off
   force under force control over Maugis' (adhbem.theory.maugis_pulloff) on grids 64, 128, 256 of
   side 1 (the cohesive zone about 6, 12, 24 spacings wide), with the first-order extrapolation of
   successive grids, and one force-indentation curve under displacement control (128^2, unloading
@@ -509,7 +510,7 @@ def case_maugis(quick, out):
     grids = (32, 64) if quick else (64, 128, 256)
     res, rows = {}, []
     for k, N in enumerate(grids):
-        r = run(n=N, size=1.0, E_star=E, gamma=G, radius=R, criterion="dugdale", dugdale_stress=s0, control="force",
+        r = run(n=N, size=1.0, E_star=E, gamma=G, radius=R, criterion="dugdale", dugdale_stress=s0, dugdale_route="fixed-point", control="force",
                 path=[0.02, -0.03], steps=30, pulloff_rtol=1e-4)
         zone = (m_off - 1) * A_off * ASCALE * N
         res[N] = dict(ratio=r["pull_off"] / F_m, width=float(r["resolution"]["cohesive_width"]), zone=zone,
@@ -521,14 +522,14 @@ def case_maugis(quick, out):
         q = res[N]
         rows.append([f"{N}", f"{q['width']:.1f}", f"{q['zone']:.1f}", f"{q['ratio']:.4f}", extra,
                      "yes" if q["pulled_off"] else "NO"] + count_cells(r["counts"]))
-    table(f"maugis: dugdale on the sphere, lambda {lam:g} (dgamma {G}, s0 {s0:.4g}, E* = R = 1, side 1), pull-off under force "
+    table(f"maugis: dugdale (the sharp law's fixed point, -adh_dugdale_route fixed-point) on the sphere, lambda {lam:g} (dgamma {G}, s0 {s0:.4g}, E* = R = 1, side 1), pull-off under force "
           f"control (F 0.02 to -0.03, 30 steps, bisected to 1e-4); Maugis: {-P:.4f} pi dgamma R",
           ["N", "zone width at pull-off (spacings)", "Maugis' (c - a)/h", "pull-off / Maugis", "extrapolated (first order)",
            "pulled off"] + COUNTS_HEADER, rows)
 
     # one curve under displacement control, unloading from a preload (the first state is adhesion-free)
     Nc = 64 if quick else 128
-    r = run(n=Nc, size=1.0, E_star=E, gamma=G, radius=R, criterion="dugdale", dugdale_stress=s0, path=[0.04, -0.06], steps=100)
+    r = run(n=Nc, size=1.0, E_star=E, gamma=G, radius=R, criterion="dugdale", dugdale_stress=s0, dugdale_route="fixed-point", path=[0.04, -0.06], steps=100)
     c = r["curve"]
     A = np.linspace(0.05, 2.5, 2000)
     P_m, D_m, _ = theory.maugis_sphere(lam, A)
@@ -555,7 +556,7 @@ def case_maugis(quick, out):
     ax1.set_xlim(min(D_m.min(), Dn.min()) - 0.1, Dn.max() * 1.05)
     ax1.set_ylim(P * 1.15, max(Pn.max(), 0.5) * 1.1)
     ax1.legend(fontsize=8, loc="upper left")
-    ax1.set_title("dugdale, displacement control", fontsize=9)
+    ax1.set_title("dugdale (fixed point), displacement control", fontsize=9)
     x = np.array(grids, dtype=float)
     ax2.axhline(1.0, **GREY, label="Maugis")
     ax2.plot(x, [res[N]["ratio"] for N in grids], "o-", ms=6, lw=1, label="adhbem")

@@ -543,8 +543,9 @@ def contact_map(ax: "Axes", results: ResultsLike, state: Union[int, str] = "deep
 def resolution(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] = (), legend: bool = True,
                labels: Optional[Sequence[str]] = None) -> None:
     """The resolution of the adhesion: the share of the tension carried by contact patches under
-    314 elements, per state carrying tension (above 0.1 at the pull-off force the grid does not
-    resolve the adhesion), the pull-off state marked, the run's verdict as the title.
+    314 elements, per state carrying tension (above 0.1 at the pull-off force a JKR-limit
+    criterion's grid does not resolve the adhesion; a finite-range criterion's zone width decides,
+    and its line is not drawn), the pull-off state marked, the run's verdict as the title.
 
     Parameters
     ----------
@@ -577,7 +578,8 @@ def resolution(ax: "Axes", results: ResultsLike, compare: Sequence[ResultsLike] 
             ax.plot(k, c["small_patch_tension"][k], "*", ms=7, color="red" if i == 0 else color, mec="red",
                     label=f"{'pull-off force' if run.results.came_apart else 'largest tension'}: {verdict}"
                     + (f" ($a_c/h$ {ac:.3g})" if ac else ""))
-        ax.axhline(0.1, color="0.5", ls="--", lw=0.6, label="resolved below")
+        if any(str(r.params.get("criterion", "pohrt-popov")) in ("crack-closure", "pohrt-popov") for r in runs):
+            ax.axhline(0.1, color="0.5", ls="--", lw=0.6, label="resolved below (JKR-limit criteria)")
         ax.set_ylim(-0.03, 1.03)
         ax.set_xlabel("state (curve row)")
         ax.set_ylabel("tension share in patches < 314 el.")

@@ -559,9 +559,9 @@ class Solver:
         - ``pulled_off``: 1 on the state where the contact was lost (the leg ends there);
         - ``smallest_tensile_patch``, ``small_patch_tension``: the smallest patch with a net
           tension, and the share of the tension carried by patches under 314 points;
-        - ``cohesive_area``, ``cohesive_force``: the area off the contact that carries a traction
-          (``criterion="dugdale"``'s cohesive zone) and its force, included in ``force`` (0 in the
-          JKR limit);
+        - ``cohesive_area``, ``cohesive_force``: the cohesive zone, the area off the contact that
+          carries a traction (``dugdale``'s, and a law's within its zone gap), and the force of the
+          traction off the contact, included in ``force`` (0 in the JKR limit);
         - ``contact_perimeter``: the length of the contact's edge (its element edges facing a point
           off the contact, times pi/4, the mean ratio of a curve's length to its staircase's; exact
           on average for isotropic edges, 4/pi too short along a grid line); ``cohesive_perimeter``:

@@ -77,7 +77,8 @@ PetscErrorCode AdhCurveGetPullOffState(const AdhCurve *c, PetscInt *state)
 #define ADH_RESOLVED_SHARE  0.1
 #define ADH_RESOLVED_RADIUS 10
 /* A cohesive zone narrower than this many grid spacings: the pull-off force depends on the grid
-   (first order: measured on Maugis' sphere at lambda 1, about 0.4 / width relative, 4% at 10). */
+   (measured on Maugis' sphere at lambda 1: by dugdale's fixed point first order, about 0.4 / width
+   relative, 4% at 10; by the minimisation 2% at 3 and 0.33% at 6). */
 #define ADH_RESOLVED_ZONE 10
 
 /* Why the grid does not resolve the adhesion at state st (ADH_UNRESOLVED_* flags; 0: it does): the
@@ -92,6 +93,8 @@ PetscInt AdhSolverUnresolved_Private(AdhSolver s, const AdhState *st)
   if (!s->crops.cohesive && st->small_patch_tension > ADH_RESOLVED_SHARE) why |= ADH_UNRESOLVED_PATCHES;
   if (s->asperity_ac > 0 && s->asperity_ac < ADH_RESOLVED_RADIUS) why |= ADH_UNRESOLVED_ASPERITIES;
   if (width > 0 && width < ADH_RESOLVED_ZONE) why |= ADH_UNRESOLVED_ZONE;
+  /* a finite-range criterion pulling with no zone on the grid: narrower than an element */
+  if (s->crops.cohesive && st->force < 0 && !(st->cohesive_area > 0) && st->contact_points > 0) why |= ADH_UNRESOLVED_ZONE;
   return why;
 }
 
@@ -115,7 +118,10 @@ PetscErrorCode AdhSolverUnresolvedWords_Private(AdhSolver s, const AdhState *st,
     PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe JKR contact radius of %s, %.3g grid spacings, under %d", words[0] ? "; " : "", s->indenter.type == ADH_INDENTER_SPHERE ? "the sphere" : "the smallest asperities", (double)s->asperity_ac, ADH_RESOLVED_RADIUS));
     PetscCall(PetscStrlcat(words, part, len));
   }
-  if (why & ADH_UNRESOLVED_ZONE) {
+  if ((why & ADH_UNRESOLVED_ZONE) && !(st->cohesive_area > 0)) {
+    PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe cohesive zone narrower than an element (no point within its range)", words[0] ? "; " : ""));
+    PetscCall(PetscStrlcat(words, part, len));
+  } else if (why & ADH_UNRESOLVED_ZONE) {
     PetscCall(PetscSNPrintf(part, sizeof(part), "%sthe cohesive zone, %.3g grid spacings wide, under %d", words[0] ? "; " : "", (double)AdhSolverCohesiveWidth_Private(s, st), ADH_RESOLVED_ZONE));
     PetscCall(PetscStrlcat(words, part, len));
   }
@@ -222,9 +228,10 @@ PetscErrorCode AdhSolverGetResolution(AdhSolver s, AdhResolution *r)
   Notes:
   One line gives the estimate of `AdhSolverGetResolution()` when there is one, with a warning below 10 grid spacings
   that the pull-off force depends on the grid. When a recorded state carried tension a second line follows on the state
-  of the largest tension: the share of its tension in patches of fewer than `ADH_RESOLVED_PATCH` elements, its smallest
-  patch with a net tension, and the verdict; before it, with a finite-range criterion, a line on the cohesive zone
-  there (how many grid spacings wide it is, with a warning below 10, and the elements it covers). Nothing
+  of the largest tension: with a zero-range criterion the share of its tension in patches of fewer than
+  `ADH_RESOLVED_PATCH` elements, its smallest patch with a net tension, and the verdict; before it, with a finite-range
+  criterion (whose line leaves the share out: its zone decides), a line on the cohesive zone there (how many grid
+  spacings wide it is, with a warning below 10, and the elements it covers). Nothing
   is printed when the curve has states and none touched (the path
   has warned that it never touches).
 
@@ -251,7 +258,7 @@ PetscErrorCode AdhSolverResolutionView(AdhSolver s, PetscViewer viewer)
   if (r.state < 0) PetscFunctionReturn(0);
   smallest[0] = 0;
   if (r.smallest_tensile_patch) PetscCall(PetscSNPrintf(smallest, sizeof(smallest), "; the smallest patch carrying a net tension has %" PetscInt_FMT, r.smallest_tensile_patch));
-  if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is %s about %.3g grid spacings wide (%.0f elements)%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "an annulus" : "a band along the contact's edge, on average", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid; on a sphere about 0.4/width relative)" : ""));
+  if (r.cohesive_width > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone is %s about %.3g grid spacings wide (%.0f elements)%s\n", s->indenter.type == ADH_INDENTER_SPHERE ? "an annulus" : "a band along the contact's edge, on average", (double)r.cohesive_width, (double)r.cohesive_elements, r.cohesive_width < ADH_RESOLVED_ZONE ? " (under 10: the pull-off force depends on the grid)" : ""));
   else if (r.cohesive_elements > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "adhbem: resolution: at the largest tension the cohesive zone covers %.0f elements\n", (double)r.cohesive_elements));
   if (r.apart < 0 && s->curve.state[r.state].contact_points == s->grid->Nx * s->grid->Ny) {
     /* the whole cell sticks: no edge, nothing for the grid to resolve */

@@ -188,6 +188,18 @@ static PetscErrorCode Begin_Dugdale(AdhSolver s)
   PetscFunctionReturn(0);
 }
 
+/* The route decides the kind of step: a law minimises, none updates sets. */
+static PetscErrorCode SetRoute(AdhSolver s)
+{
+  const Dugdale *dd = (const Dugdale *)s->crops.data;
+
+  PetscFunctionBegin;
+  s->crops.law      = dd->route == ADH_DUGDALE_MINIMIZE ? Law_Dugdale : NULL;
+  s->crops.zone_gap = dd->route == ADH_DUGDALE_MINIMIZE ? ZoneGap_Dugdale : NULL;
+  s->crops.peak     = dd->route == ADH_DUGDALE_MINIMIZE ? Peak_Dugdale : NULL;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   Dugdale *dd = (Dugdale *)s->crops.data;
@@ -198,10 +210,7 @@ static PetscErrorCode SetFromOptions_Dugdale(AdhSolver s, AdhOptionItems PetscOp
   PetscCall(PetscOptionsEnum("-adh_dugdale_route", "dugdale: how a step finds the zone: minimise the energy of the law (its drop at the range smoothed, -adh_dugdale_smoothing; the default) or the fixed point of set updates (Maugis' sharp law; slow once the zone is a few elements wide)", "ADHCRITERIONDUGDALE", AdhDugdaleRoutes, (PetscEnum)dd->route, (PetscEnum *)&dd->route, NULL));
   PetscCall(AdhOptionsReal("-adh_dugdale_smoothing", "dugdale, minimize route: the tension falls from s0 to 0 linearly between the gaps range (1 - e) and range (1 + e), the work dgamma kept", "ADHCRITERIONDUGDALE", dd->smoothing, &dd->smoothing, NULL));
   PetscCheck(dd->smoothing > 0 && dd->smoothing < 1, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_dugdale_smoothing must lie in (0, 1), got %g", (double)dd->smoothing);
-  /* the route decides the kind of step: a law minimises, none updates sets */
-  s->crops.law      = dd->route == ADH_DUGDALE_MINIMIZE ? Law_Dugdale : NULL;
-  s->crops.zone_gap = dd->route == ADH_DUGDALE_MINIMIZE ? ZoneGap_Dugdale : NULL;
-  s->crops.peak     = dd->route == ADH_DUGDALE_MINIMIZE ? Peak_Dugdale : NULL;
+  PetscCall(SetRoute(s));
   PetscFunctionReturn(0);
 }
 
@@ -333,5 +342,6 @@ PETSC_INTERN PetscErrorCode AdhCriterionCreate_Dugdale(AdhSolver s)
   s->crops.base.shape          = Shape_Dugdale;
   s->crops.base.memory         = Memory_Dugdale;
   s->crops.base.destroy        = Destroy_Dugdale;
+  PetscCall(SetRoute(s)); /* the default route's ops from the start, as the view and the checkpoint's shape say */
   PetscFunctionReturn(0);
 }

@@ -25,7 +25,9 @@ The table: lambda, the route, the grid, the zone's width in elements (from the r
 report), the largest tension over Maugis', the first-order extrapolation over Maugis' (the fixed
 point's order), the largest distance of the contact radius (from its area) from Maugis' a(d) along
 the path in grid spacings (the states in contact on Maugis' branch), the iterations (KSP or the
-minimisation's), FFT pairs (in all and a state) and CPU time; with --force-control, the pull-off of
+minimisation's; in all, and a state's median/largest), Maugis' contact radius at pull-off over his
+zone's width (a/zone, the scale the minimisation's iterations follow), FFT pairs (in all and a
+state) and CPU time; with --force-control, the pull-off of
 the same case under force control (a Hertz start at 0.5 F_Maugis to -1.5 F_Maugis) over Maugis',
 with its FFT pairs and CPU time.
 """
@@ -114,9 +116,11 @@ def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, f
             tension = float(f.attrs["pull_off_force"]) if force else -float(f["curve/force"][()].min())
             a_err = float("nan") if force else radius_error(lam, f["curve/d"][()], f["curve/area"][()], L / N)
             width_run = float(f.attrs.get("pull_off_cohesive_width", float("nan")))
-            ksp, ffts = int(f["curve/ksp_iterations"][()].sum()), int(f["curve/fft_pairs"][()].sum())
+            its = f["curve/ksp_iterations"][()]
+            ksp, ffts = int(its.sum()), int(f["curve/fft_pairs"][()].sum())
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps, a_err=a_err)
+    return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps, a_err=a_err,
+                its_median=float(np.median(its)), its_max=int(its.max()), a_over_zone=a / zone)
 
 
 def main():
@@ -149,7 +153,7 @@ def main():
         widths = widths[:1]
         grid = (a.n, max(case(lam, widths[0])[2] for lam in lambdas))
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
-    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'a err/h':>8} {'iterations':>10} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}"
+    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'a err/h':>8} {'iterations':>10} {'a state':>9} {'a/zone':>7} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}"
           + (f" {'force control':>14} {'FFT pairs':>10} {'CPU s':>7}" if a.force_control else ""))
     N_ref = grid[0] if grid else case(lambdas[0], widths[0])[1]
 
@@ -168,7 +172,7 @@ def main():
                     f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
                     extra = f"{f_inf / r['exact']:.4f}"
                 line = (f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} "
-                        f"{r['a_err']:>8.2f} {r['ksp']:>10} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}")
+                        f"{r['a_err']:>8.2f} {r['ksp']:>10} {r['its_median']:>4.0f}/{r['its_max']:<4d} {r['a_over_zone']:>7.3g} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}")
                 if a.force_control:
                     fc = run(lam, widths[k], steps(lam, widths[k]), a.np, route, a.smoothing, grid, force=True)
                     pulled = f"{fc['tension'] / fc['exact']:.4f}" if math.isfinite(fc["tension"]) else "not apart"

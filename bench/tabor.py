@@ -255,9 +255,11 @@ def from_json(ap, files):
         same = ("config", "hurst", "seed", "grids", "gamma", "d1", "steps")
         if first is None:
             first = d
-        elif any(d.get(k) != first.get(k) for k in same):
-            ap.error(f"--from-json: {path} is another surface, grid set or path than {files[0]} (" + ", ".join(
-                f"{k} {d.get(k)} against {first.get(k)}" for k in same if d.get(k) != first.get(k)) + ")")
+        else:  # a key an older file lacks is not a difference
+            differ = [k for k in same if k in d and k in first and d[k] != first[k]]
+            if differ:
+                ap.error(f"--from-json: {path} is another surface, grid set or path than {files[0]} ("
+                         + ", ".join(f"{k} {d[k]} against {first[k]}" for k in differ) + ")")
         for name, r in d["runs"].items():
             if name in runs:
                 ap.error(f"--from-json: the run '{name}' is in {path} and in an earlier file: merge files of different runs")

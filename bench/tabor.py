@@ -12,11 +12,13 @@ the same band-limited surface on every grid, displacement control 0 -> d1 -> 0 -
 is given as the Tabor-Maugis parameter of the smallest asperities, lambda = 2 s0 (R/(pi dgamma
 K^2))^(1/3), K = 4E*/3, R their mean tip radius (the estimate adhbem reports): s0 follows from
 lambda, the range is dgamma/s0. For each lambda of --lambdas the dugdale run is made on each grid
-of --n and extrapolated in the grid (first order, which the sphere shows: tests/solver/test_dugdale.py);
-then the extrapolated values are extrapolated in the range (f = f_JKR + c/lambda^k, k between 1
-and 2, from the two largest lambdas whose grid limits are resolved: Maugis' sphere approaches its
-JKR pull-off so). crack-closure and pohrt-popov run
-on the same grids, extrapolated in the grid as bench convergence does (their observed order).
+of --n and extrapolated in the grid (Richardson's estimate with the order three grids show; first
+order for the sharp law's fixed point, which the sphere shows: tests/solver/test_dugdale.py), with
+an error bar (at least the last refinement's change); then the extrapolated values are
+extrapolated in the range (f = f_JKR + c/lambda^k, k between 1 and 2, from the two largest lambdas
+whose grid limits are within 1%: Maugis' sphere approaches its JKR pull-off so; the middle of the
+two forms, half their distance in the error bar). crack-closure and pohrt-popov run on the same
+grids, extrapolated in the grid as bench convergence does (their observed order).
 
 Per quantity (the largest tension, the energy dissipated over the loop, the force and the contact
 area fraction at the deepest state) the table gives every run's value, the extrapolations, and at
@@ -26,6 +28,7 @@ per run are printed as the runs finish (stderr) and kept in --json.
     ./run bench tabor [--config resolved|moderate|unresolved] [--hurst H] [--seed S] [--n N1,N2] [--lambdas L1,L2,...]
         [--route minimize|fixed-point] [--criteria crack-closure,pohrt-popov|none] [--np P] [--steps K] [--quick]
         [--json FILE] [-- OPTIONS]
+    ./run bench tabor --from-json A.json[,B.json...]    (the table of saved runs of one surface)
 
 --criteria: the JKR-limit criteria beside, each with its default attach rule (griffith with
 crack-closure, reach with pohrt-popov) or the one after a slash (crack-closure/reach).

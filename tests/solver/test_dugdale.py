@@ -124,7 +124,7 @@ def test_pulloff_near_dmt(route, tolerance):
 
 def test_a_wide_zone_around_a_small_contact_is_resolved():
     """Near DMT (lambda 0.3, 64^2) the contact at pull-off is a small disk whose zone is 22 elements
-    wide: the contact patch carries all of the contact's tension, which would make a zero-range
+    wide: the contact patch carries the contact's tension (100% measured), which would make a zero-range
     criterion's pull-off depend on the grid, but here the zone carries the tension and its edge is
     not singular, so the report says the grid resolves it (the pull-off is within 0.2%:
     test_pulloff_near_dmt)."""
@@ -135,7 +135,7 @@ def test_a_wide_zone_around_a_small_contact_is_resolved():
         r = s.resolution
     say(f"\ndugdale lambda 0.3, 64^2: zone {r['cohesive_width']:.1f} spacings, {r['small_patch_tension']:.0%} of the contact's "
         f"tension on small patches; resolved {r['resolved']}")
-    assert r["small_patch_tension"] > 0.5 and r["cohesive_width"] > 10
+    assert r["small_patch_tension"] > 0.9 and r["cohesive_width"] > 10
     assert r["resolved"] is True and not r["unresolved"]
 
 

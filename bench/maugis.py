@@ -12,20 +12,24 @@ contact needs a finer grid: at lambda 3 the zone is about a tenth of the contact
 about 0.7%, which no grid of this machine resolves (--lambdas 10 with --widths 2,4 tries).
 
     ./run bench maugis [--lambdas 0.3,1,3] [--widths 5,10] [--steps 80] [--steps-with-grid] [--np P]
-        [--route fixed-point,minimize] [--smoothing 0.2] [--n N] [--force-control]
+        [--route fixed-point,minimize] [--direction newton,polak-ribiere] [--smoothing 0.2] [--n N]
+        [--force-control]
 
 --n N: every lambda on one N^2 grid (the domain the largest one a lambda needs), the zone's width
 then falling as lambda grows: the cost on the same sphere and grid.
 
 --route: how the steps find the zone, each route on every case: the fixed point of set updates
 (Maugis' sharp law) and the energy minimisation of the law smoothed over --smoothing of its range
-(-adh_dugdale_route minimize -adh_dugdale_smoothing).
+(-adh_dugdale_route minimize -adh_dugdale_smoothing). --direction: the minimisation's directions
+to run it with (-adh_minimize_direction: newton, the default, or polak-ribiere), each a row
+(minimize/newton, minimize/polak-ribiere).
 
 The table: lambda, the route, the grid, the zone's width in elements (from the run's resolution
 report), the largest tension over Maugis', the first-order extrapolation over Maugis' (the fixed
 point's order), the largest distance of the contact radius (from its area) from Maugis' a(d) along
-the path in grid spacings (the states in contact on Maugis' branch), the iterations (KSP or the
-minimisation's; in all, and a state's median/largest), Maugis' contact radius at pull-off over his
+the path in grid spacings (the states in contact on Maugis' branch), the Krylov iterations (the
+fixed point's KSP, the Newton steps' conjugate gradients or Polak-Ribiere's; in all, and a state's
+median/largest), the outer iterations a state's median (set updates or Newton steps), Maugis' contact radius at pull-off over his
 zone's width (a/zone, the scale the minimisation's iterations follow), FFT pairs (in all and a
 state) and CPU time; with --force-control, the pull-off of
 the same case under force control (a Hertz start at 0.5 F_Maugis to -1.5 F_Maugis) over Maugis',
@@ -85,6 +89,8 @@ def radius_error(lam, d, area, h):
 
 
 def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, force=False):
+    """route: fixed-point, or minimize/<direction>."""
+    route, _, direction = route.partition("/")
     """One run; grid = (N, L) puts it on that grid instead of the one its zone's width sizes; force:
     under force control from a compression of half the pull-off force to 1.5 times the pull-off in
     tension (the leg ends at the pull-off, bisected to 1e-4)."""
@@ -104,7 +110,7 @@ def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, f
         if force:
             cmd += ["-adh_control", "force", "-adh_pulloff_rtol", "1e-4"]
         if route == "minimize":
-            cmd += ["-adh_dugdale_smoothing", repr(smoothing)]
+            cmd += ["-adh_dugdale_smoothing", repr(smoothing), "-adh_minimize_direction", direction or "newton"]
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -117,10 +123,11 @@ def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, f
             a_err = float("nan") if force else radius_error(lam, f["curve/d"][()], f["curve/area"][()], L / N)
             width_run = float(f.attrs.get("pull_off_cohesive_width", float("nan")))
             its = f["curve/ksp_iterations"][()]
+            outer = f["curve/outer_iterations"][()]
             ksp, ffts = int(its.sum()), int(f["curve/fft_pairs"][()].sum())
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     return dict(N=N, L=L, tension=tension, exact=F, width=width_run, ksp=ksp, ffts=ffts, cpu=cpu, steps=steps, a_err=a_err,
-                its_median=float(np.median(its)), its_max=int(its.max()), a_over_zone=a / zone)
+                its_median=float(np.median(its)), its_max=int(its.max()), outer_median=float(np.median(outer)), a_over_zone=a / zone)
 
 
 def main():
@@ -130,6 +137,7 @@ def main():
     ap.add_argument("--steps", type=int, default=80, help="steps of the path (preload to beyond the pull-off)")
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--route", default="fixed-point,minimize", help="the routes to run: fixed-point, minimize or both")
+    ap.add_argument("--direction", default="newton", help="the minimize route's directions (-adh_minimize_direction): newton, polak-ribiere or both")
     ap.add_argument("--smoothing", type=float, default=0.2, help="the minimize route's -adh_dugdale_smoothing")
     ap.add_argument("--n", type=int, default=0, help="every lambda on this one grid (its domain the largest the lambdas need), "
                     "instead of grids sized to --widths: the cost of the same sphere and grid as lambda grows")
@@ -140,10 +148,17 @@ def main():
                     help="steps in proportion to the grid's N, --steps on the first case's grid: a step then moves the "
                     "contact's edge across about as many elements at every lambda and width")
     a = ap.parse_args()
-    routes = a.route.split(",")
-    for route in routes:
+    routes = []
+    for route in a.route.split(","):
         if route not in ("fixed-point", "minimize"):
             sys.exit(f"bench maugis: --route: unknown route '{route}' (fixed-point, minimize)")
+        if route == "fixed-point":
+            routes.append(route)
+            continue
+        for direction in a.direction.split(","):
+            if direction not in ("newton", "polak-ribiere"):
+                sys.exit(f"bench maugis: --direction: unknown direction '{direction}' (newton, polak-ribiere)")
+            routes.append(f"minimize/{direction}")
     lambdas = [float(v) for v in a.lambdas.split(",")]
     widths = [float(v) for v in a.widths.split(",")]
     grid = None
@@ -153,7 +168,7 @@ def main():
         widths = widths[:1]
         grid = (a.n, max(case(lam, widths[0])[2] for lam in lambdas))
     print(f"# dugdale on the sphere (E* = R = 1, dgamma {GAMMA}) against Maugis: the largest tension under displacement control")
-    print(f"{'lambda':>7} {'route':>12} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'a err/h':>8} {'iterations':>10} {'a state':>9} {'a/zone':>7} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}"
+    print(f"{'lambda':>7} {'route':>22} {'Maugis P':>9} {'N':>6} {'steps':>6} {'zone':>6} {'tension/Maugis':>15} {'extrapolated':>13} {'a err/h':>8} {'iterations':>10} {'a state':>9} {'outer':>6} {'a/zone':>7} {'FFT pairs':>10} {'a step':>7} {'CPU s':>7}"
           + (f" {'force control':>14} {'FFT pairs':>10} {'CPU s':>7}" if a.force_control else ""))
     N_ref = grid[0] if grid else case(lambdas[0], widths[0])[1]
 
@@ -171,8 +186,8 @@ def main():
                     q = widths[k] / widths[k - 1]
                     f_inf = (q * r["tension"] - rows[k - 1]["tension"]) / (q - 1)
                     extra = f"{f_inf / r['exact']:.4f}"
-                line = (f"{lam:>7g} {route:>12} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} "
-                        f"{r['a_err']:>8.2f} {r['ksp']:>10} {r['its_median']:>4.0f}/{r['its_max']:<4d} {r['a_over_zone']:>7.3g} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}")
+                line = (f"{lam:>7g} {route:>22} {P:>9.4f} {r['N']:>6} {r['steps']:>6} {r['width']:>6.3g} {r['tension'] / r['exact']:>15.4f} {extra:>13} "
+                        f"{r['a_err']:>8.2f} {r['ksp']:>10} {r['its_median']:>4.0f}/{r['its_max']:<4d} {r['outer_median']:>6.0f} {r['a_over_zone']:>7.3g} {r['ffts']:>10} {r['ffts'] / (r['steps'] + 1):>7.0f} {r['cpu']:>7.1f}")
                 if a.force_control:
                     fc = run(lam, widths[k], steps(lam, widths[k]), a.np, route, a.smoothing, grid, force=True)
                     pulled = f"{fc['tension'] / fc['exact']:.4f}" if math.isfinite(fc["tension"]) else "not apart"

@@ -264,6 +264,7 @@ struct _p_AdhSolver {
   PetscReal       minimize_rtol;    /* -adh_minimize_rtol: it stops at this relative projected gradient */
   PetscInt        minimize_max_it;  /* -adh_minimize_max_it */
   PetscBool       minimize_pc;      /* -adh_minimize_pc fourier: the compliance preconditions it */
+  PetscBool       minimize_newton;  /* -adh_minimize_direction newton (else polak-ribiere) */
   PetscBool       minimize_monitor; /* -adh_minimize_monitor: a line per iteration */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       rms_slope, rms_curvature, full_contact_energy; /* a rough profile's, for the two estimates (roughness.c, made once a profile; 0: none) */

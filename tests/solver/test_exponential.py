@@ -193,6 +193,32 @@ def test_fft_pairs_a_state_stay_few():
     assert counts[64, "none"] > 2 * counts[64, "fourier"]
 
 
+@pytest.mark.parametrize("boundary, control, d", [("periodic", "displacement", (0.0, 0.01, -0.03)),
+                                                  ("periodic", "force", (0.005, -0.02)),
+                                                  ("free", "displacement", (0.0, 0.01, -0.03)),
+                                                  ("free", "force", (0.005, -0.02))])
+def test_both_directions_reach_the_same_states(boundary, control, d):
+    """The Newton direction (the default) and Polak-Ribiere's minimise to the same states, through
+    the jump into contact and the pull-off: the same contact counts, forces and d to 1e-7 of the
+    largest force (both stop at a relative projected gradient of 1e-10), the pull-off marked alike.
+    The curve counts Newton's steps as its outer iterations, one a state for Polak-Ribiere."""
+    serial_only()
+    c = {direction: path(30, d=d, steps=8, control=control, boundary=boundary, minimize_direction=direction,
+                         minimize_rtol=1e-10)
+         for direction in ("newton", "polak-ribiere")}
+    new, old = c["newton"], c["polak-ribiere"]
+    scale = float(np.max(np.abs(old["force"])))
+    say(f"\nexponential, {boundary}, {control}: newton against polak-ribiere, max |dF| {np.max(np.abs(new['force'] - old['force'])) / scale:.1e} "
+        f"of the largest; FFT pairs {int(new['fft_pairs'].sum())} against {int(old['fft_pairs'].sum())}")
+    assert len(new["d"]) == len(old["d"]) and np.array_equal(new["contact_points"], old["contact_points"])
+    assert np.max(np.abs(new["force"] - old["force"])) < 1e-7 * scale
+    assert np.max(np.abs(new["d"] - old["d"])) < 1e-7 * np.max(np.abs(old["d"]))
+    assert np.array_equal(new["pulled_off"], old["pulled_off"])
+    assert np.all(new["outer_iterations"] >= 1) and new["outer_iterations"].sum() > len(new["d"])
+    if control == "displacement":  # one minimisation a state (force control on the free boundary marches through trials)
+        assert np.all(old["outer_iterations"] == 1)
+
+
 @pytest.mark.mpi
 @pytest.mark.ranks3
 def test_same_curve_on_any_number_of_ranks():
@@ -241,6 +267,7 @@ def test_results_attributes_and_restart_refusal(tmp_path):
     (["-adh_exponential_range", "0.01", "-adh_attach", "reach"], "-adh_attach"),
     (["-adh_exponential_range", "0.01", "-adh_minimize_rtol", "2"], "-adh_minimize_rtol"),
     (["-adh_exponential_range", "0.01", "-adh_minimize_pc", "jacobi"], "-adh_minimize_pc"),
+    (["-adh_exponential_range", "0.01", "-adh_minimize_direction", "bfgs"], "-adh_minimize_direction"),
 ])
 def test_bad_input_refused(args, culprit):
     """One line naming the option, a non-zero exit."""

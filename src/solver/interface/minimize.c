@@ -25,6 +25,9 @@
 #define ADH_RUNAWAY 30.0
 /* A step is halved at most this often before the direction is given up. */
 #define ADH_MAX_HALVINGS 10
+/* The Newton direction's inner conjugate gradient stops after this many iterations (with the
+   iterate so far, still a descent direction). */
+#define ADH_NEWTON_MAX_CG 500
 /* A move of a gap below this share of the zone gap is short: the law's energy change is integrated. */
 #define ADH_SHORT_MOVE 1e-2
 
@@ -43,6 +46,11 @@ struct _n_AdhMinimizer {
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
   PetscReal dgamma;     /* the largest work of adhesion present (the scales of the law: its range and peak) */
+  KSP      ksp;         /* newton: the direction's inner conjugate gradient (NULL until needed) */
+  Mat      H;           /* newton: the energy's Hessian on the free points, a shell */
+  const PetscScalar *hgamma; /* newton: the dgamma field while H applies (NULL: uniform) */
+  PetscBool hfixmean, hforce; /* newton: the mean gap held, a force's mean mode in the preconditioner */
+  PetscInt cg_total;    /* newton: the inner iterations over the run */
   PetscInt its_total;   /* iterations over the run, for the view */
   PetscInt states;
 };
@@ -50,7 +58,8 @@ struct _n_AdhMinimizer {
 PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
   static const char *const pcs[] = {"none", "fourier", "AdhMinimizePC", "", NULL};
-  PetscInt                 pc    = s->minimize_pc ? 1 : 0;
+  static const char *const dirs[] = {"polak-ribiere", "newton", "AdhMinimizeDirection", "", NULL};
+  PetscInt                 pc    = s->minimize_pc ? 1 : 0, dir = s->minimize_newton ? 1 : 0;
 
   PetscFunctionBegin;
   PetscCall(AdhOptionsReal("-adh_minimize_rtol", "A cohesive law's step stops when the projected gradient of the energy, a pressure, is this small relative to the pressure field", "AdhSolver", s->minimize_rtol, &s->minimize_rtol, NULL));
@@ -60,16 +69,19 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   PetscCall(PetscOptionsBool("-adh_minimize_monitor", "Print a line per iteration of a cohesive law's energy minimisation (as -ksp_monitor)", "AdhSolver", s->minimize_monitor, &s->minimize_monitor, NULL));
   PetscCall(PetscOptionsEList("-adh_minimize_pc", "The preconditioner of a cohesive law's minimisation: the compliance on the free points (fourier) or none", "AdhSolver", pcs, 2, pcs[pc], &pc, NULL));
   s->minimize_pc = (PetscBool)(pc == 1);
+  PetscCall(PetscOptionsEList("-adh_minimize_direction", "The direction of a cohesive law's minimisation: an inexact Newton step by conjugate gradients on the free points (newton) or the preconditioned gradient conjugated by Polak-Ribiere (polak-ribiere)", "AdhSolver", dirs, 2, dirs[dir], &dir, NULL));
+  s->minimize_newton = (PetscBool)(dir == 1);
   PetscFunctionReturn(0);
 }
 
-/* The bytes a grid point costs the minimisation: its twelve vectors, two more for the
-   preconditioner's scaling of a law that stiffens the energy and one for force control on the free
-   boundary, and two bytes of marks per variable, a variable a point on a periodic cell and four on
-   the free boundary's padded grid. */
+/* The bytes a grid point costs the minimisation: its twelve vectors, three more for the Newton
+   direction's conjugate gradient (KSPCG's work vectors), two more for the preconditioner's scaling
+   of a law that stiffens the energy and one for force control on the free boundary, and two bytes
+   of marks per variable, a variable a point on a periodic cell and four on the free boundary's
+   padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  const PetscReal vectors = 12.0 + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 1.0 : 0.0);
+  const PetscReal vectors = 12.0 + (s->minimize_newton ? 3.0 : 0.0) + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 1.0 : 0.0);
   return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (vectors * sizeof(PetscScalar) + 2.0);
 }
 
@@ -81,8 +93,11 @@ PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver s, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy: projected conjugate gradient in the gaps, preconditioner %s, to a relative projected gradient %g\n", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
-    if (s->minimizer && s->minimizer->states) PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " iterations over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->states));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy in the gaps, projected onto the wall: %s, preconditioner %s, to a relative projected gradient %g\n", s->minimize_newton ? "inexact Newton steps by conjugate gradients on the free points" : "Polak-Ribiere conjugate gradient", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
+    if (s->minimizer && s->minimizer->states) {
+      if (s->minimize_newton) PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " Newton steps (%" PetscInt_FMT " conjugate gradient iterations) over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->cg_total, s->minimizer->states));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " iterations over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->states));
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -113,6 +128,8 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->wr));
   PetscCall(VecDestroy(&m->pforce));
   PetscCall(PetscFree(m->active));
+  PetscCall(KSPDestroy(&m->ksp));
+  PetscCall(MatDestroy(&m->H));
   PetscCall(PetscFree(s->minimizer));
   PetscFunctionReturn(0);
 }
@@ -578,8 +595,106 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
   PetscFunctionReturn(0);
 }
 
-/* The minimum at d = target, or (force) under the force target on a periodic cell. */
-static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target, PetscBool *none)
+
+/* The Newton direction. Far from the wall's changes the energy is smooth, and the compliance
+   preconditions its elastic part exactly; the conjugate gradient of the nonlinear problem loses
+   its conjugacy wherever the law's curvature changes along the path (half its iterations restart,
+   docs/theory/minimisation.md), so the direction is instead an inexact Newton step: the Hessian
+   on the free points, H = S + phi''(v), solved by KSPCG with the same preconditioner, to a relative
+   residual min(1/2, sqrt(rel)) (Eisenstat and Walker's choice 2 in the spirit, which measured
+   cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG stops with the
+   iterate so far (Steihaug's rule), a descent direction; the line search is the one the
+   gradient's directions take, so the branch is followed the same way. */
+
+/* y = P (S x + phi''(v) x), P the restriction to the free points (and mean-free with fixmean). */
+static PetscErrorCode HessianMult(Mat H, Vec x, Vec y)
+{
+  AdhSolver          s;
+  AdhMinimizer       m;
+  const PetscScalar *va, *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(H, &s));
+  m = s->minimizer;
+  PetscCall(ApplyMeanFree(s, m->S, x, y));
+  PetscCall(VecGetArrayRead(m->v, &va));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt k = 0; k < m->n; k++) {
+    PetscReal phi, dphi, ddphi;
+    Law(s, m->hgamma, k, PetscMax(PetscRealPart(va[k]), 0.0), &phi, &dphi, &ddphi);
+    ya[k] += ddphi * xa[k];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArrayRead(m->v, &va));
+  PetscCall(RestrictToFree(s, m->hfixmean, y));
+  PetscFunctionReturn(0);
+}
+
+/* y = P K P x, the gradient's preconditioner (-adh_minimize_pc none: P x). */
+static PetscErrorCode PreconditionFree(AdhSolver s, Vec x, Vec y)
+{
+  AdhMinimizer m = s->minimizer;
+
+  PetscFunctionBegin;
+  if (s->minimize_pc) PetscCall(Precondition(s, m->hgamma, m->hforce, x, y));
+  else PetscCall(VecCopy(x, y));
+  PetscCall(RestrictToFree(s, m->hfixmean, y));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode HessianPC(PC pc, Vec x, Vec y)
+{
+  AdhSolver s;
+
+  PetscFunctionBegin;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(PreconditionFree(s, x, y));
+  PetscFunctionReturn(0);
+}
+
+/* t: the inexact Newton direction, H t = -rp to rtol on the free points; *its the inner
+   iterations. An indefinite H at the first iteration leaves t = 0: then the preconditioned
+   gradient, CG's own first direction. */
+static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, PetscBool fixmean, PetscBool force, PetscReal rtol, PetscInt *its)
+{
+  AdhMinimizer       m = s->minimizer;
+  KSPConvergedReason reason;
+  PetscReal          tn;
+
+  PetscFunctionBegin;
+  if (!m->ksp) {
+    PC pc;
+    PetscCall(MatCreateShell(s->comm, m->n, m->n, PETSC_DETERMINE, PETSC_DETERMINE, s, &m->H));
+    PetscCall(MatShellSetOperation(m->H, MATOP_MULT, (void (*)(void))HessianMult));
+    PetscCall(KSPCreate(s->comm, &m->ksp));
+    PetscCall(KSPSetType(m->ksp, KSPCG));
+    PetscCall(KSPSetOperators(m->ksp, m->H, m->H));
+    PetscCall(KSPGetPC(m->ksp, &pc));
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, s));
+    PetscCall(PCShellSetApply(pc, HessianPC));
+    PetscCall(KSPSetNormType(m->ksp, KSP_NORM_NATURAL)); /* no extra multiply for the residual's norm */
+  }
+  m->hgamma   = gamma;
+  m->hfixmean = fixmean;
+  m->hforce   = force;
+  PetscCall(KSPSetTolerances(m->ksp, rtol, 0.0, PETSC_DEFAULT, ADH_NEWTON_MAX_CG));
+  PetscCall(VecAXPBY(m->z, -1.0, 0.0, m->rp));
+  PetscCall(KSPSolve(m->ksp, m->z, m->t));
+  PetscCall(KSPGetConvergedReason(m->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(m->ksp, its));
+  PetscCall(VecNorm(m->t, NORM_2, &tn));
+  if (!(tn > 0)) PetscCall(PreconditionFree(s, m->z, m->t));
+  if (s->minimize_monitor) PetscCall(PetscPrintf(s->comm, "         Newton direction: %" PetscInt_FMT " conjugate gradient iterations, %s\n", *its, KSPConvergedReasons[reason]));
+  PetscFunctionReturn(0);
+}
+
+/* The minimum at d = target, or (force) under the force target on a periodic cell; hold: the
+   solver's contact set is the start's (s->p's). */
+static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target, PetscBool hold, PetscBool *none)
 {
   const PetscBool    fixmean = (PetscBool)(!force && s->boundary == ADH_BOUNDARY_PERIODIC); /* a periodic cell's mean gap is held by d */
   const PetscReal    N = (PetscReal)s->grid->Nx * s->grid->Ny, cell = s->grid->Lx * s->grid->Ly;
@@ -588,7 +703,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
   AdhMinimizer       m;
   PetscScalar        sum;
   PetscReal          mu = 0.0, mean = s->mean_h - target, zrp_old = 0.0, rel = 1.0, scale;
-  PetscInt           it, changed, since_exact = 0, restarts = 0, stalls = 0;
+  PetscInt           it, changed, since_exact = 0, restarts = 0, stalls = 0, cg_its = 0;
   PetscBool          clamped, restart = PETSC_TRUE, steepest = PETSC_FALSE, down = PETSC_FALSE, stalled = PETSC_FALSE, stop = PETSC_FALSE;
   PetscInt           failed = 0; /* 1: the iteration limit, 2: a stall down the gradient */
 
@@ -613,6 +728,34 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
   PetscCall(Move(s, s->p, m->work, 0.0, PETSC_FALSE));
   PetscCall(ApplyMeanFree(s, m->C, m->work, m->v));
   PetscCall(VecAXPY(m->v, 1.0, m->b));
+  if (hold && s->npoints) { /* the last state's contact stays at the wall: pulled back, the rigid
+                               move would lift it all off, to be found again point by point (on
+                               Maugis' sphere at lambda 2 a tenth of the FFT pairs); s->g is free
+                               until the state is written */
+    const PetscScalar *za;
+    PetscScalar       *ga, *va;
+    PetscReal          sums[2] = {0.0, 0.0}; /* the contact's gaps given up, the points left */
+    PetscCall(VecGetArrayWrite(s->g, &ga));
+    for (PetscInt k = 0; k < s->nlocal; k++) ga[k] = s->in_set[k] ? 1.0 : 0.0;
+    PetscCall(VecRestoreArrayWrite(s->g, &ga));
+    PetscCall(Move(s, s->g, m->z, 0.0, PETSC_FALSE));
+    PetscCall(VecGetArrayRead(m->z, &za));
+    PetscCall(VecGetArray(m->v, &va));
+    for (PetscInt k = 0; k < m->n; k++) {
+      if (PetscRealPart(za[k]) > 0) {
+        sums[0] += PetscRealPart(va[k]);
+        va[k] = 0.0;
+      } else sums[1] += 1.0;
+    }
+    if (fixmean) { /* the mean gap kept: what the contact gave up spread over the rest (the
+                      projection below takes any point it puts under the wall) */
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, s->comm));
+      for (PetscInt k = 0; k < m->n && sums[1] > 0; k++)
+        if (!(PetscRealPart(za[k]) > 0)) va[k] += sums[0] / sums[1];
+    }
+    PetscCall(VecRestoreArray(m->v, &va));
+    PetscCall(VecRestoreArrayRead(m->z, &za));
+  }
   PetscCall(ProjectOntoBound(s, fixmean, mean, m->v, &clamped));
   PetscCall(PetscArrayzero(m->active, m->n));
   PetscCall(ElasticPressure(s));
@@ -653,22 +796,30 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
       failed = 1;
       break;
     }
-    /* the direction: preconditioned projected gradient, conjugated unless the held points changed */
-    if (s->minimize_pc && !steepest) {
-      PetscCall(Precondition(s, gamma, force, m->rp, m->z));
-      PetscCall(RestrictToFree(s, fixmean, m->z));
-    } else PetscCall(VecCopy(m->rp, m->z));
-    PetscCall(VecDot(m->z, m->rp, &dot));
-    zrp = PetscRealPart(dot);
-    if (changed || restart) beta = 0.0;
-    else {
-      PetscCall(VecDot(m->z, m->rpold, &dot));
-      beta = PetscMax(0.0, (zrp - PetscRealPart(dot)) / zrp_old);
+    /* the direction: the Newton step on the free points, or the preconditioned projected gradient
+       conjugated unless the held points changed; after a stall, the gradient itself */
+    if (s->minimize_newton && !steepest) {
+      PetscInt cg;
+      PetscCall(NewtonDirection(s, gamma, fixmean, force, PetscMin(0.5, PetscSqrtReal(rel)), &cg));
+      cg_its += cg;
+      zrp = 0.0; /* nothing to conjugate */
+    } else {
+      if (s->minimize_pc && !steepest) {
+        PetscCall(Precondition(s, gamma, force, m->rp, m->z));
+        PetscCall(RestrictToFree(s, fixmean, m->z));
+      } else PetscCall(VecCopy(m->rp, m->z));
+      PetscCall(VecDot(m->z, m->rp, &dot));
+      zrp = PetscRealPart(dot);
+      if (changed || restart) beta = 0.0;
+      else {
+        PetscCall(VecDot(m->z, m->rpold, &dot));
+        beta = PetscMax(0.0, (zrp - PetscRealPart(dot)) / zrp_old);
+      }
+      if (beta > 0) PetscCall(VecAYPX(m->t, beta, m->z));
+      else PetscCall(VecCopy(m->z, m->t));
+      PetscCall(VecScale(m->t, -1.0));
+      if (beta > 0) PetscCall(RestrictToFree(s, fixmean, m->t));
     }
-    if (beta > 0) PetscCall(VecAYPX(m->t, beta, m->z));
-    else PetscCall(VecCopy(m->z, m->t));
-    PetscCall(VecScale(m->t, -1.0));
-    if (beta > 0) PetscCall(RestrictToFree(s, fixmean, m->t));
     PetscCall(KeepOffWall(s, fixmean, m->t));
     PetscCall(VecDot(m->t, m->r, &dot));
     tr0       = PetscRealPart(dot);
@@ -681,7 +832,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
       restarts++;
     }
     zrp_old = zrp;
-    down = (PetscBool)(((steepest || !s->minimize_pc) && beta == 0) || restarts > restarts0); /* down the gradient: a stall now is the end */
+    down = (PetscBool)(steepest || (!s->minimize_newton && !s->minimize_pc && beta == 0) || restarts > restarts0); /* down the gradient: a stall now is the end */
     restart  = PETSC_FALSE;
     steepest = PETSC_FALSE;
     /* the step: the elastic part along t is quadratic, S t gives it */
@@ -760,9 +911,12 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
   }
   PetscCall(AdhSolverRebuildSet_Private(s));
   s->gap_current = PETSC_TRUE;
-  s->step_outer += 1;
-  s->step_ksp += it;
+  /* the cost in the curve: Newton steps as the outer iterations and their conjugate gradients' as
+     the Krylov ones, as a set's route counts its updates and KSP iterations */
+  s->step_outer += s->minimize_newton ? it : 1;
+  s->step_ksp += s->minimize_newton ? cg_its : it;
   m->its_total += it;
+  m->cg_total += cg_its;
   m->states++;
   PetscCall(PetscInfo(s, "%s %g: energy minimised in %" PetscInt_FMT " iterations (%" PetscInt_FMT " not downhill, %" PetscInt_FMT " stalled), relative projected gradient %g, %" PetscInt_FMT " points at the wall\n", force ? "the force" : "d =", (double)target, it, restarts, stalls, (double)rel, s->npoints));
   PetscFunctionReturn(0);
@@ -793,7 +947,7 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
 
   PetscFunctionBegin;
   PetscCall(VecCopy(from, s->p));
-  PetscCall(MinimizeAt(s, PETSC_FALSE, d, &none));
+  PetscCall(MinimizeAt(s, PETSC_FALSE, d, PETSC_FALSE, &none));
   AdhSolverReturnIfStopped_Private(s);
   PetscCall(ForceOf(s, zone, F, apart));
   PetscFunctionReturn(0);
@@ -933,7 +1087,7 @@ PetscErrorCode AdhSolverMinimize_Private(AdhSolver s, PetscReal target, PetscBoo
 
   PetscFunctionBegin;
   if (force && s->boundary == ADH_BOUNDARY_FREE) PetscCall(MinimizeForceFree(s, target, none));
-  else PetscCall(MinimizeAt(s, force, target, none));
+  else PetscCall(MinimizeAt(s, force, target, PETSC_TRUE, none));
   AdhSolverReturnIfStopped_Private(s);
   s->law_apart = *none;
   PetscFunctionReturn(0);

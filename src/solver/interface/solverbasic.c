@@ -60,6 +60,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->minimize_rtol   = 1e-8;
   s->minimize_max_it = 100000;
   s->minimize_pc     = PETSC_TRUE;
+  s->minimize_newton = PETSC_TRUE;
   s->adhesive  = PETSC_TRUE;
   s->certify   = PETSC_TRUE;
   s->use_box   = PETSC_TRUE;

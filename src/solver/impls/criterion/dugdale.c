@@ -27,7 +27,8 @@
 
    With the default route each state is a minimum of the total energy (the elastic energy plus the smoothed law's
    potential, the wall g >= 0 as a bound) reached from the last, as for `ADHCRITERIONEXPONENTIAL`; its cost grows
-   slowly as the zone narrows (a state's iterations about as (a/zone)^0.7 to lambda 3, faster beyond), and the smoothing makes the pull-off
+   as the zone narrows against the contact (a state's FFT pairs about as (a/zone)^0.7, Maugis' contact radius over
+   his zone's width), and the smoothing makes the pull-off
    converge faster with the grid (Maugis' sphere at lambda 1: within 0.3% on 64^2 and 0.1% on 128^2, where the fixed
    point is 6% and 3% off; on a rough cell the largest tension is converged on 128^2 where the fixed point's still
    moves 1-2% a refinement at 512^2). Both controls on both boundaries; the -adh_minimize_ options apply. In the

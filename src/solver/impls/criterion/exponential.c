@@ -11,8 +11,11 @@
 +  -adh_criterion exponential        - selects this law
 .  -adh_exponential_range <rho>      - the range rho (required, > 0)
 .  -adh_minimize_rtol <1e-8>         - a step stops at this relative projected gradient of the energy
-.  -adh_minimize_max_it <100000>     - the largest number of iterations in a step
--  -adh_minimize_pc <fourier,none>   - the preconditioner of the minimisation
+.  -adh_minimize_max_it <100000>     - the largest number of iterations (Newton steps) in a step
+.  -adh_minimize_pc <fourier,none>   - the preconditioner of the minimisation
+.  -adh_minimize_direction <newton,polak-ribiere> - inexact Newton steps by conjugate gradients on the free points,
+                                       or the preconditioned gradient conjugated by Polak-Ribiere
+-  -adh_minimize_monitor             - a line per iteration (and per Newton direction, its conjugate gradients)
 
    Level: intermediate
 

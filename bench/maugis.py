@@ -89,11 +89,11 @@ def radius_error(lam, d, area, h):
 
 
 def run(lam, width, steps, np_, route="fixed-point", smoothing=0.2, grid=None, force=False):
-    """route: fixed-point, or minimize/<direction>."""
+    """One run; route fixed-point or minimize/<direction>; grid = (N, L) puts it on that grid
+    instead of the one its zone's width sizes; force: under force control from a compression of
+    half the pull-off force to 1.5 times the pull-off in tension (the leg ends at the pull-off,
+    bisected to 1e-4)."""
     route, _, direction = route.partition("/")
-    """One run; grid = (N, L) puts it on that grid instead of the one its zone's width sizes; force:
-    under force control from a compression of half the pull-off force to 1.5 times the pull-off in
-    tension (the leg ends at the pull-off, bisected to 1e-4)."""
     s0, N, L, F, a, zone, d_pull = case(lam, width)
     if grid:
         N, L = grid

@@ -550,7 +550,9 @@ class Solver:
           target's d under force control; force F = sum p hx hy; contact area);
         - ``outer_iterations``, ``ksp_iterations``, ``compliance_applications``, ``fft_pairs``,
           ``seconds``: its cost (set updates, CG iterations, compliance applications,
-          forward+backward FFT pairs, wall time);
+          forward+backward FFT pairs, wall time; under a cohesive law the minimisation's Newton
+          steps and their CG iterations, or with ``minimize_direction="polak-ribiere"`` one a
+          minimisation and its iterations);
         - ``patches``: connected clusters of the contact set; ``mean_gap``: the gap's mean;
         - ``max_tension_ratio``: the largest tension over Sigma; ``detach_ratio``: the
           criterion's largest demand over its limit (1: a point is about to let go);

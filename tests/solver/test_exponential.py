@@ -51,7 +51,9 @@ def test_every_state_is_an_equilibrium_and_a_minimum():
     """On a 16^2 cell along a loading and unloading path: off the contact the pressure is the
     law's attraction; on it the gap is 0 and the tension at most dgamma/rho; the pressure is the
     stiffness of the displacement (to the mean); and the energy's Hessian on the free gaps
-    (mean-free, as the mean gap is held) is positive definite: a minimum, not a saddle."""
+    (mean-free, as the mean gap is held) is positive definite: a minimum, not a saddle. The mean
+    gap is mean(h) - d in every state (each starts with the last contact held at the wall, the
+    rest shifted to keep it)."""
     serial_only()
     n, rho = 16, 0.02
     S = stiffness_matrix(n)
@@ -66,6 +68,7 @@ def test_every_state_is_an_equilibrium_and_a_minimum():
             assert np.all(g >= 0) and np.all(p[~free] >= -peak * (1 + 1e-8))
             u = g - h + state["d"]
             assert np.max(np.abs(S @ (u - u.mean()) - (p - p.mean()))) < 1e-8 * peak
+            assert abs(g.mean() - (h.mean() - state["d"])) < 1e-12 * np.abs(h).max()  # the mean gap d holds, from the held start on
             if free.sum() > 1:
                 H = S[np.ix_(free, free)] - np.diag(GAMMA / rho ** 2 * np.exp(-g[free] / rho))
                 P = np.eye(free.sum()) - 1.0 / free.sum()  # the mean gap is held
@@ -222,15 +225,19 @@ def test_both_directions_reach_the_same_states(boundary, control, d):
 @pytest.mark.mpi
 @pytest.mark.ranks3
 def test_same_curve_on_any_number_of_ranks():
-    """COMM_WORLD against COMM_SELF under both controls: the same contact counts, forces to 1e-8."""
+    """COMM_WORLD against COMM_SELF under both controls (and Polak-Ribiere's direction on one): the
+    same contact counts, forces to 1e-8."""
     mpi = PETSc.COMM_WORLD.tompi4py()
-    for boundary, control, d in (("periodic", "displacement", (0.0, 0.01, -0.03)), ("periodic", "force", (0.005, -0.02)),
-                                 ("free", "displacement", (0.0, 0.01, -0.03)), ("free", "force", (0.005, -0.02))):
-        world = path(30, d=d, steps=8, control=control, boundary=boundary)
-        alone = path(30, d=d, steps=8, control=control, boundary=boundary, comm=PETSc.COMM_SELF)
+    for boundary, control, d, direction in (("periodic", "displacement", (0.0, 0.01, -0.03), "newton"),
+                                            ("periodic", "force", (0.005, -0.02), "newton"),
+                                            ("free", "displacement", (0.0, 0.01, -0.03), "newton"),
+                                            ("free", "force", (0.005, -0.02), "newton"),
+                                            ("periodic", "displacement", (0.0, 0.01, -0.03), "polak-ribiere")):
+        world = path(30, d=d, steps=8, control=control, boundary=boundary, minimize_direction=direction)
+        alone = path(30, d=d, steps=8, control=control, boundary=boundary, minimize_direction=direction, comm=PETSc.COMM_SELF)
         same = mpi.allreduce(int(len(world["d"]) == len(alone["d"]) and np.array_equal(world["contact_points"], alone["contact_points"])), op=_min())
         rel = mpi.allreduce(float(np.max(np.abs(world["force"] - alone["force"])) / np.max(np.abs(alone["force"]))), op=_max())
-        say(f"\nexponential, {boundary}, {control}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
+        say(f"\nexponential, {boundary}, {control}, {direction}, {PETSc.COMM_WORLD.getSize()} ranks vs 1: max |dF|/max|F| {rel:.1e}")
         assert same == 1 and rel < 1e-8
 
 
@@ -248,6 +255,8 @@ def test_results_attributes_and_restart_refusal(tmp_path):
     with h5py.File(tmp_path / "a.h5", "r") as f:
         assert f.attrs["criterion"] == "exponential"
         assert float(f.attrs["exponential_range"]) == pytest.approx(0.01, rel=1e-12)
+        direction = f.attrs["minimize_direction"]
+        assert (direction.decode() if isinstance(direction, bytes) else direction) == "newton"
         mu = (GAMMA ** 2 / 0.01 ** 3) ** (1 / 3)
         assert float(f.attrs["tabor_mu"]) == pytest.approx(mu, rel=1e-9)
         assert float(f.attrs["asperity_tabor"]) == pytest.approx(mu, rel=1e-9)  # the resolution report's, of the sphere

@@ -1,13 +1,15 @@
 /* A step under a cohesive law (a criterion with a law op: impls/criterion/exponential.c, ...): the
    minimum of the total energy, elastic energy plus the law's potential over the gaps, with the hard
    wall g >= 0 as a bound, reached from the current state so that the quasi-static branch is
-   followed. A projected nonlinear conjugate gradient in the gap variables (Polonsky and Keer 1999,
-   with the adhesive functional of Rey, Anciaux and Molinari 2017): on the free points (gap > 0, or
-   at 0 and pulled away) the direction is the energy's gradient, preconditioned with the compliance,
-   conjugated with Polak-Ribiere; the step length minimises the energy along the direction (the
-   elastic part is quadratic, one stiffness multiply gives it; the law's part is pointwise); the
-   step is projected back onto the bound (and the mean gap under displacement control). Why not
-   TAO: docs/theory/minimisation.md.
+   followed. A projected descent in the gap variables (Polonsky and Keer 1999, with the adhesive
+   functional of Rey, Anciaux and Molinari 2017), started with the last state's contact at the
+   wall: on the free points (gap > 0, or at 0 and pulled away) the direction is an inexact Newton
+   step, the energy's Hessian there solved by CG with the compliance as preconditioner
+   (-adh_minimize_direction newton), or the preconditioned gradient conjugated with Polak-Ribiere
+   (polak-ribiere); the step length minimises the energy along the direction (the elastic part is
+   quadratic, one stiffness multiply gives it; the law's part is pointwise); the step is projected
+   back onto the bound (and the mean gap under displacement control). Why not TAO, and why Newton:
+   docs/theory/minimisation.md.
 
    The variables. On a periodic cell the gaps: the elastic displacement is u = g - (h - d), the
    elastic pressure S u (S, the stiffness, applied to mean-free vectors: a periodic cell has no
@@ -57,9 +59,9 @@ struct _n_AdhMinimizer {
 
 PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionItems PetscOptionsObject)
 {
-  static const char *const pcs[] = {"none", "fourier", "AdhMinimizePC", "", NULL};
+  static const char *const pcs[]  = {"none", "fourier", "AdhMinimizePC", "", NULL};
   static const char *const dirs[] = {"polak-ribiere", "newton", "AdhMinimizeDirection", "", NULL};
-  PetscInt                 pc    = s->minimize_pc ? 1 : 0, dir = s->minimize_newton ? 1 : 0;
+  PetscInt                 pc     = s->minimize_pc ? 1 : 0, dir = s->minimize_newton ? 1 : 0;
 
   PetscFunctionBegin;
   PetscCall(AdhOptionsReal("-adh_minimize_rtol", "A cohesive law's step stops when the projected gradient of the energy, a pressure, is this small relative to the pressure field", "AdhSolver", s->minimize_rtol, &s->minimize_rtol, NULL));
@@ -75,7 +77,7 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
 }
 
 /* The bytes a grid point costs the minimisation: its twelve vectors, three more for the Newton
-   direction's conjugate gradient (KSPCG's work vectors), two more for the preconditioner's scaling
+   direction's conjugate gradient (KSPNASH's work vectors), two more for the preconditioner's scaling
    of a law that stiffens the energy and one for force control on the free boundary, and two bytes
    of marks per variable, a variable a point on a periodic cell and four on the free boundary's
    padded grid. */
@@ -85,12 +87,18 @@ PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
   return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (vectors * sizeof(PetscScalar) + 2.0);
 }
 
-/* Its lines in the law's -adh_view. */
+/* Its lines in the law's -adh_view, or its attributes in the results file (the direction says what
+   the curve's outer and Krylov iterations count). */
 PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver s, PetscViewer viewer)
 {
-  PetscBool isascii;
+  PetscBool isascii, ishdf5;
 
   PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERHDF5, &ishdf5));
+  if (ishdf5) {
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_rtol", PETSC_REAL, &s->minimize_rtol));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_direction", PETSC_STRING, s->minimize_newton ? "newton" : "polak-ribiere"));
+  }
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy in the gaps, projected onto the wall: %s, preconditioner %s, to a relative projected gradient %g\n", s->minimize_newton ? "inexact Newton steps by conjugate gradients on the free points" : "Polak-Ribiere conjugate gradient", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
@@ -595,12 +603,11 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
   PetscFunctionReturn(0);
 }
 
-
 /* The Newton direction. Far from the wall's changes the energy is smooth, and the compliance
    preconditions its elastic part exactly; the conjugate gradient of the nonlinear problem loses
    its conjugacy wherever the law's curvature changes along the path (half its iterations restart,
    docs/theory/minimisation.md), so the direction is instead an inexact Newton step: the Hessian
-   on the free points, H = S + phi''(v), solved by KSPCG with the same preconditioner, to a relative
+   on the free points, H = S + phi''(v), solved by CG (KSPNASH) with the same preconditioner, to a relative
    residual min(1/2, sqrt(rel)) (Eisenstat and Walker's choice 2 in the spirit, which measured
    cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG stops with the
    iterate so far (Steihaug's rule), a descent direction; the line search is the one the
@@ -633,31 +640,32 @@ static PetscErrorCode HessianMult(Mat H, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* y = P K P x, the gradient's preconditioner (-adh_minimize_pc none: P x). */
-static PetscErrorCode PreconditionFree(AdhSolver s, Vec x, Vec y)
+/* y = P K P x, the gradient's preconditioner on the free points (-adh_minimize_pc none: P x). */
+static PetscErrorCode PreconditionFree(AdhSolver s, const PetscScalar *gamma, PetscBool force, PetscBool fixmean, Vec x, Vec y)
 {
-  AdhMinimizer m = s->minimizer;
-
   PetscFunctionBegin;
-  if (s->minimize_pc) PetscCall(Precondition(s, m->hgamma, m->hforce, x, y));
+  if (s->minimize_pc) PetscCall(Precondition(s, gamma, force, x, y));
   else PetscCall(VecCopy(x, y));
-  PetscCall(RestrictToFree(s, m->hfixmean, y));
+  PetscCall(RestrictToFree(s, fixmean, y));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode HessianPC(PC pc, Vec x, Vec y)
 {
-  AdhSolver s;
+  AdhSolver    s;
+  AdhMinimizer m;
 
   PetscFunctionBegin;
   PetscCall(PCShellGetContext(pc, &s));
-  PetscCall(PreconditionFree(s, x, y));
+  m = s->minimizer;
+  PetscCall(PreconditionFree(s, m->hgamma, m->hforce, m->hfixmean, x, y));
   PetscFunctionReturn(0);
 }
 
 /* t: the inexact Newton direction, H t = -rp to rtol on the free points; *its the inner
-   iterations. An indefinite H at the first iteration leaves t = 0: then the preconditioned
-   gradient, CG's own first direction. */
+   iterations. KSPNASH stops before a direction of negative curvature (KSPCG does not at its first
+   iteration: it would step uphill); one at the first iteration leaves t = 0, and then the
+   direction is the preconditioned gradient, CG's own first. */
 static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, PetscBool fixmean, PetscBool force, PetscReal rtol, PetscInt *its)
 {
   AdhMinimizer       m = s->minimizer;
@@ -669,14 +677,18 @@ static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, Pet
     PC pc;
     PetscCall(MatCreateShell(s->comm, m->n, m->n, PETSC_DETERMINE, PETSC_DETERMINE, s, &m->H));
     PetscCall(MatShellSetOperation(m->H, MATOP_MULT, (void (*)(void))HessianMult));
+    char prefix[256];
     PetscCall(KSPCreate(s->comm, &m->ksp));
-    PetscCall(KSPSetType(m->ksp, KSPCG));
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sadh_minimize_", s->prefix ? s->prefix : "")); /* a solve's -ksp_view and the like are not this KSP's */
+    PetscCall(KSPSetOptionsPrefix(m->ksp, prefix));
+    PetscCall(KSPSetType(m->ksp, KSPNASH)); /* CG that stops at negative curvature, even on its first iteration (KSPCG does not); radius 0: no trust region */
     PetscCall(KSPSetOperators(m->ksp, m->H, m->H));
     PetscCall(KSPGetPC(m->ksp, &pc));
     PetscCall(PCSetType(pc, PCSHELL));
     PetscCall(PCShellSetContext(pc, s));
     PetscCall(PCShellSetApply(pc, HessianPC));
-    PetscCall(KSPSetNormType(m->ksp, KSP_NORM_NATURAL)); /* no extra multiply for the residual's norm */
+    PetscCall(PCShellSetName(pc, "the compliance on the free points"));
+    PetscCall(KSPSetNormType(m->ksp, KSP_NORM_NATURAL)); /* r.z, which CG computes anyway */
   }
   m->hgamma   = gamma;
   m->hfixmean = fixmean;
@@ -687,7 +699,7 @@ static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, Pet
   PetscCall(KSPGetConvergedReason(m->ksp, &reason));
   PetscCall(KSPGetIterationNumber(m->ksp, its));
   PetscCall(VecNorm(m->t, NORM_2, &tn));
-  if (!(tn > 0)) PetscCall(PreconditionFree(s, m->z, m->t));
+  if (!(tn > 0)) PetscCall(PreconditionFree(s, gamma, force, fixmean, m->z, m->t));
   if (s->minimize_monitor) PetscCall(PetscPrintf(s->comm, "         Newton direction: %" PetscInt_FMT " conjugate gradient iterations, %s\n", *its, KSPConvergedReasons[reason]));
   PetscFunctionReturn(0);
 }
@@ -802,12 +814,10 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
       PetscInt cg;
       PetscCall(NewtonDirection(s, gamma, fixmean, force, PetscMin(0.5, PetscSqrtReal(rel)), &cg));
       cg_its += cg;
-      zrp = 0.0; /* nothing to conjugate */
+      zrp = 0.0; /* nothing to conjugate (a switch to Polak-Ribiere comes only after a stall, which restarts it) */
     } else {
-      if (s->minimize_pc && !steepest) {
-        PetscCall(Precondition(s, gamma, force, m->rp, m->z));
-        PetscCall(RestrictToFree(s, fixmean, m->z));
-      } else PetscCall(VecCopy(m->rp, m->z));
+      if (!steepest) PetscCall(PreconditionFree(s, gamma, force, fixmean, m->rp, m->z));
+      else PetscCall(VecCopy(m->rp, m->z));
       PetscCall(VecDot(m->z, m->rp, &dot));
       zrp = PetscRealPart(dot);
       if (changed || restart) beta = 0.0;
@@ -864,7 +874,11 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
       }
       alpha *= 0.5;
     }
-    if (s->minimize_monitor) PetscCall(PetscPrintf(s->comm, "    %4" PetscInt_FMT " relative projected gradient %.6e, step %.3e%s, %" PetscInt_FMT " points changed at the wall, beta %.3g\n", it, (double)rel, (double)alpha, clamped ? " (projected)" : "", changed, (double)beta));
+    if (s->minimize_monitor) {
+      char conj[64] = "";
+      if (!s->minimize_newton) PetscCall(PetscSNPrintf(conj, sizeof(conj), ", beta %.3g", (double)beta));
+      PetscCall(PetscPrintf(s->comm, "    %4" PetscInt_FMT " relative projected gradient %.6e, step %.3e%s, %" PetscInt_FMT " points changed at the wall%s\n", it, (double)rel, (double)alpha, clamped ? " (projected)" : "", changed, conj));
+    }
     if (failed) break;
     if (!stalled) since_exact = clamped ? 0 : since_exact + 1; /* a stall went back to the pressure before */
     PetscCall(Gradient(s, gamma, pbar));

@@ -113,8 +113,8 @@ PetscErrorCode AdhSolverStart(AdhSolver s, PetscReal target)
 . F      - the force, the sum of the pressures times the element area hx hy (or `NULL`)
 . A      - the contact area, the points in contact times hx hy (or `NULL`)
 . points - the number of grid points in contact (or `NULL`)
-. outer  - the set updates of the last step (or `NULL`)
-. ksp    - the KSP iterations of the last step (or `NULL`)
+. outer  - the set updates of the last step (a cohesive law's: its Newton steps) (or `NULL`)
+. ksp    - the KSP iterations of the last step (a cohesive law's: the Newton steps' CG iterations) (or `NULL`)
 - mults  - the compliance applications of the last step (or `NULL`)
 
   Level: intermediate

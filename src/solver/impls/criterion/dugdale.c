@@ -271,7 +271,10 @@ static PetscErrorCode View_Dugdale(AdhSolver s, PetscViewer viewer)
   if (ishdf5) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_stress", PETSC_REAL, &dd->s0));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_route", PETSC_STRING, AdhDugdaleRoutes[dd->route]));
-    if (dd->route == ADH_DUGDALE_MINIMIZE) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_smoothing", PETSC_REAL, &dd->smoothing));
+    if (dd->route == ADH_DUGDALE_MINIMIZE) {
+      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_smoothing", PETSC_REAL, &dd->smoothing));
+      PetscCall(AdhSolverMinimizeView_Private(s, viewer)); /* minimize_rtol, minimize_direction */
+    }
     if (!s->gamma_field) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dugdale_range", PETSC_REAL, &range));
     if (sphere && !s->gamma_field) {
       PetscReal lambda = Lambda(s, dd->s0);

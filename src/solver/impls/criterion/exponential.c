@@ -118,7 +118,7 @@ static PetscErrorCode View_Exponential(AdhSolver s, PetscViewer viewer)
   }
   if (ishdf5) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "exponential_range", PETSC_REAL, &ex->rho));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_rtol", PETSC_REAL, &s->minimize_rtol));
+    PetscCall(AdhSolverMinimizeView_Private(s, viewer)); /* minimize_rtol, minimize_direction */
     if (sphere) {
       PetscReal mu = Tabor(s, ex->rho);
       PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "tabor_mu", PETSC_REAL, &mu));

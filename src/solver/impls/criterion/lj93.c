@@ -121,7 +121,7 @@ static PetscErrorCode View_LJ93(AdhSolver s, PetscViewer viewer)
   }
   if (ishdf5) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "lj93_distance", PETSC_REAL, &lj->z0));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_rtol", PETSC_REAL, &s->minimize_rtol));
+    PetscCall(AdhSolverMinimizeView_Private(s, viewer)); /* minimize_rtol, minimize_direction */
     if (sphere) {
       PetscReal mu = Tabor_LJ93(s, s->indenter.radius, s->gamma);
       PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "tabor_mu", PETSC_REAL, &mu));

@@ -610,7 +610,7 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
    on the free points, H = S + phi''(v), solved by CG (KSPNASH) with the same preconditioner, to a relative
    residual min(1/2, sqrt(rel)) (Eisenstat and Walker's choice 2 in the spirit, which measured
    cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG stops with the
-   iterate so far (Steihaug's rule), a descent direction; the line search is the one the
+   iterate so far (Nash's truncation), a descent direction; the line search is the one the
    gradient's directions take, so the branch is followed the same way. */
 
 /* y = P (S x + phi''(v) x), P the restriction to the free points (and mean-free with fixmean). */

@@ -295,6 +295,7 @@ PETSC_EXTERN PetscErrorCode AdhSolverMonitor(AdhSolver, PetscInt step, const Adh
 /* Whether the last step ended in pull-off (the next step starts with the bodies apart). */
 PETSC_EXTERN PetscErrorCode AdhSolverIsPulledOff(AdhSolver, PetscBool *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCurve(AdhSolver, const AdhCurve **);
+PETSC_EXTERN PetscErrorCode AdhSolverGetIterationNames(AdhSolver, const char *[], const char *[]);
 PETSC_EXTERN PetscErrorCode AdhSolverGetGrid(AdhSolver, AdhGrid *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetCompliance(AdhSolver, Mat *);
 PETSC_EXTERN PetscErrorCode AdhSolverGetContactSet(AdhSolver, IS *);

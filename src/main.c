@@ -240,6 +240,7 @@ static PetscErrorCode Run(AdhSolver solver)
     PetscInt      ksp = 0, mults = 0, outer = 0, ffts = 0, touched = 0, Nx, Ny;
     AdhResolution r;
     char          words[512];
+    const char   *outer_name, *inner_name;
     for (PetscInt k = 0; k < curve->n; k++) {
       const AdhState *st = &curve->state[k];
       touched += st->contact_points > 0;
@@ -256,7 +257,8 @@ static PetscErrorCode Run(AdhSolver solver)
     }
     if (!touched) PetscCall(PetscSNPrintf(words, sizeof(words), "the surfaces never touched"));
     else PetscCall(PullOffWords(curve, Nx * Ny, &r, words, sizeof(words)));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; %s; %" PetscInt_FMT " set updates, %" PetscInt_FMT " KSP iterations, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, words, outer, ksp, mults, ffts));
+    PetscCall(AdhSolverGetIterationNames(solver, &outer_name, &inner_name));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adhbem: %" PetscInt_FMT " states; %s; %" PetscInt_FMT " %s, %" PetscInt_FMT " %s, %" PetscInt_FMT " compliance applications, %" PetscInt_FMT " FFT pairs\n", curve->n, words, outer, outer_name, ksp, inner_name, mults, ffts));
   }
   PetscCall(AdhSolverResolutionView(solver, NULL));
   PetscFunctionReturn(0);

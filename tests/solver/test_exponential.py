@@ -5,6 +5,7 @@ definite, assembled densely on a small cell); without adhesion the contact solve
 DMT limit of a long range; force control pulling off where displacement control passes the largest
 tension; 1 rank equal to 2 and 3; a restart that changes the range refused; bad input refused."""
 import math
+import re
 import subprocess
 
 import numpy as np
@@ -267,6 +268,28 @@ def test_results_attributes_and_restart_refusal(tmp_path):
     r = subprocess.run(base + ["-adh_exponential_range", "0.01", "-adh_restart", str(ck), "-adh_output", str(tmp_path / "c.h5")],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]
+
+
+@pytest.mark.parametrize("direction, outer, inner", [
+    ("newton", "Newton steps", "conjugate gradient iterations"),
+    ("polak-ribiere", "minimisations", "Polak-Ribiere iterations"),
+])
+def test_summary_names_the_minimisations_counts(tmp_path, direction, outer, inner):
+    """The executable's summary line says what a cohesive law's counts are (not set updates and
+    KSP iterations), and its numbers are the curve's sums."""
+    serial_only()
+    import h5py
+    r = subprocess.run([EXE, "-adh_n", "32", "-adh_boundary", "periodic", "-adh_gamma", str(GAMMA), "-adh_criterion", "exponential",
+                        "-adh_exponential_range", "0.01", "-adh_path", "0,0.01,-0.03", "-adh_steps", "6", "-adh_start", "adhesive",
+                        "-adh_minimize_direction", direction, "-adh_output", str(tmp_path / "a.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr[-2000:]
+    m = re.search(rf"^adhbem: \d+ states; .*; (\d+) {outer}, (\d+) {inner}, \d+ compliance applications", r.stdout, re.M)
+    assert m, r.stdout
+    assert "set updates" not in m.group(0)
+    with h5py.File(tmp_path / "a.h5", "r") as f:
+        assert int(m.group(1)) == int(f["curve/outer_iterations"][()].sum()) > 0
+        assert int(m.group(2)) == int(f["curve/ksp_iterations"][()].sum()) > 0
 
 
 @pytest.mark.parametrize("args, culprit", [

@@ -393,6 +393,37 @@ PetscErrorCode AdhSolverGetCurve(AdhSolver s, const AdhCurve **curve)
 }
 
 /*@
+  AdhSolverGetIterationNames - Gets what a state's two iteration counts count: the curve's outer_iterations and
+  ksp_iterations
+
+  Not Collective
+
+  Input Parameter:
+. s - the solver
+
+  Output Parameters:
++ outer - "set updates" (a criterion's set-update loop), "Newton steps" (a cohesive law minimised with
+          `-adh_minimize_direction newton`) or "minimisations" (one a state, `polak-ribiere`)
+- inner - "KSP iterations", "conjugate gradient iterations" (Newton's inner ones) or "Polak-Ribiere iterations"
+
+  Level: intermediate
+
+  Note:
+  The strings belong to the library; either pointer may be `NULL`. The answer depends on the criterion and its route,
+  so ask after `AdhSolverSetFromOptions()` or `AdhSolverSetUp()`.
+
+.seealso: `AdhSolverGetCurve()`, `AdhState`, `ADHCRITERIONEXPONENTIAL`, `ADHCRITERIONDUGDALE`
+@*/
+PetscErrorCode AdhSolverGetIterationNames(AdhSolver s, const char *outer[], const char *inner[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(s, ADH_CLASSID, 1);
+  if (outer) *outer = !s->crops.law ? "set updates" : s->minimize_newton ? "Newton steps" : "minimisations";
+  if (inner) *inner = !s->crops.law ? "KSP iterations" : s->minimize_newton ? "conjugate gradient iterations" : "Polak-Ribiere iterations";
+  PetscFunctionReturn(0);
+}
+
+/*@
   AdhSolverDestroy - Destroys the solver and everything it holds
 
   Collective

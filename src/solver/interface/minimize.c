@@ -43,6 +43,7 @@ struct _n_AdhMinimizer {
   Vec      work, pold; /* scratch, and the elastic pressure before a step */
   Vec      u, rpold;   /* the elastic displacement v - b, and the previous projected gradient (Polak-Ribiere) */
   Vec      w, wr;       /* the preconditioner's scaling where the law stiffens the energy, and w r (NULL until needed) */
+  PetscBool wheld, wscaled; /* inside a Newton solve: w is the linearisation point's, and whether it scales */
   Vec      pforce;      /* free boundary, force control: the last accepted trial's pressure (NULL until needed) */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
@@ -284,7 +285,8 @@ static PetscErrorCode Precondition(AdhSolver s, const PetscScalar *gamma, PetscB
   PetscBool    scaled;
 
   PetscFunctionBegin;
-  PetscCall(CurvatureScaling(s, gamma, &scaled));
+  if (m->wheld) scaled = m->wscaled; /* a Newton solve's v does not move: its scaling neither */
+  else PetscCall(CurvatureScaling(s, gamma, &scaled));
   if (scaled) {
     PetscCall(VecPointwiseMult(m->wr, m->w, r));
     r = m->wr;
@@ -695,7 +697,10 @@ static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, Pet
   m->hforce   = force;
   PetscCall(KSPSetTolerances(m->ksp, rtol, 0.0, PETSC_DEFAULT, ADH_NEWTON_MAX_CG));
   PetscCall(VecAXPBY(m->z, -1.0, 0.0, m->rp));
+  if (s->minimize_pc) PetscCall(CurvatureScaling(s, gamma, &m->wscaled)); /* once for the solve, not at every iteration */
+  m->wheld = s->minimize_pc;
   PetscCall(KSPSolve(m->ksp, m->z, m->t));
+  m->wheld = PETSC_FALSE;
   PetscCall(KSPGetConvergedReason(m->ksp, &reason));
   PetscCall(KSPGetIterationNumber(m->ksp, its));
   PetscCall(VecNorm(m->t, NORM_2, &tn));

@@ -33,6 +33,23 @@
 /* A move of a gap below this share of the zone gap is short: the law's energy change is integrated. */
 #define ADH_SHORT_MOVE 1e-2
 
+/* A free boundary's force control walks the branch from the step's state to the force asked. One
+   that comes apart has passed the branch's largest tension; the pull-off's bisection then asks
+   for forces beyond it again and again, each a walk to where the bodies let go (most of a force-
+   controlled path's cost). So the walk remembers that largest tension, refined at a parabola's
+   vertex, and a later walk of the same step from a state of the same branch (its start, or a
+   state a walk from such a start found) answers at once for a force beyond it, and for one short
+   of it brackets the force between its start and that largest force's d. */
+typedef struct {
+  PetscBool known;
+  PetscInt  row;    /* the curve's row of the step it belongs to */
+  PetscReal dir;    /* the direction of d the walk took (+1 pressing, -1 pulling) */
+  PetscReal start;  /* the d of a state of the branch from which a walk meets the same largest force */
+  PetscReal startF; /* and its force */
+  PetscReal Fmax;   /* the force of the branch furthest in dir's sense (its largest tension pulling) */
+  PetscReal dmax;   /* and its d */
+} AdhForceWalk;
+
 struct _n_AdhMinimizer {
   Mat      S, C;        /* the stiffness and the compliance on the variables (periodic: the solver's) */
   char    *surface;     /* free boundary: which local variables are the grid's points (NULL: all are) */
@@ -45,6 +62,8 @@ struct _n_AdhMinimizer {
   Vec      w, wr;       /* the preconditioner's scaling where the law stiffens the energy, and w r (NULL until needed) */
   PetscBool wheld, wscaled; /* inside a Newton solve: w is the linearisation point's, and whether it scales */
   Vec      pforce;      /* free boundary, force control: the last accepted trial's pressure (NULL until needed) */
+  Vec      pbest;       /* and the pressure of the walk's state nearest the force (NULL until needed) */
+  AdhForceWalk walk;    /* what the last walk that came apart found, for the pull-off's bisection */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
@@ -79,12 +98,12 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
 
 /* The bytes a grid point costs the minimisation: its twelve vectors, three more for the Newton
    direction's conjugate gradient (KSPNASH's work vectors), two more for the preconditioner's scaling
-   of a law that stiffens the energy and one for force control on the free boundary, and two bytes
+   of a law that stiffens the energy and two for force control on the free boundary, and two bytes
    of marks per variable, a variable a point on a periodic cell and four on the free boundary's
    padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  const PetscReal vectors = 12.0 + (s->minimize_newton ? 3.0 : 0.0) + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 1.0 : 0.0);
+  const PetscReal vectors = 12.0 + (s->minimize_newton ? 3.0 : 0.0) + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 2.0 : 0.0);
   return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (vectors * sizeof(PetscScalar) + 2.0);
 }
 
@@ -136,6 +155,7 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->w));
   PetscCall(VecDestroy(&m->wr));
   PetscCall(VecDestroy(&m->pforce));
+  PetscCall(VecDestroy(&m->pbest));
   PetscCall(PetscFree(m->active));
   PetscCall(KSPDestroy(&m->ksp));
   PetscCall(MatDestroy(&m->H));
@@ -983,6 +1003,54 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
    control's bisection asks. */
 #define ADH_FORCE_APART 1e-6
 
+/* The walk's state furthest towards T, refined: the vertex of the parabola in d through it (x2, r2,
+   r the shortfall from T) and the accepted states either side (x1 and x3), a trial there from it,
+   until the shortfall changes by less than tol (a few times; the walk's moves leave an error of
+   the second order in them, the vertex one of the third). */
+static PetscErrorCode RefineWalkBest(AdhSolver s, PetscReal T, PetscReal dir, PetscReal zone, PetscReal tol, PetscReal x1, PetscReal r1, PetscReal *x2, PetscReal *r2, PetscReal x3, PetscReal r3)
+{
+  AdhMinimizer m = s->minimizer;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < 4; k++) {
+    const PetscReal a = (*x2 - x1) * (*r2 - r3), b = (*x2 - x3) * (*r2 - r1), den = a - b;
+    PetscReal       xv, Fv, rv;
+    PetscBool       apart;
+
+    if (!(PetscAbsReal(den) > 0)) break;
+    xv = *x2 - 0.5 * ((*x2 - x1) * a - (*x2 - x3) * b) / den;
+    if (!((xv - x1) * (xv - x3) < 0) || xv == *x2) break; /* strictly between the neighbours */
+    PetscCall(TrialAt(s, m->pbest, xv, zone, &Fv, &apart));
+    AdhSolverReturnIfStopped_Private(s);
+    if (apart) break;
+    rv = dir * (T - Fv);
+    if (rv < *r2) {
+      const PetscBool done = (PetscBool)(*r2 - rv <= tol);
+      if ((xv - x1) * (xv - *x2) < 0) { /* between x1 and x2: x2 becomes the far neighbour */
+        x3 = *x2;
+        r3 = *r2;
+      } else {
+        x1 = *x2;
+        r1 = *r2;
+      }
+      *x2 = xv;
+      *r2 = rv;
+      PetscCall(VecCopy(s->p, m->pbest));
+      if (done) break;
+    } else {
+      if ((xv - x1) * (xv - *x2) < 0) {
+        x1 = xv;
+        r1 = rv;
+      } else {
+        x3 = xv;
+        r3 = rv;
+      }
+      if (rv - *r2 <= tol) break;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Force control on the free boundary, whose padded minimisation has no mean mode to carry a force:
    the d on the step's branch at which the minimum carries the force T. From the step's state (d0,
    F0) it marches towards T, each trial a minimisation at a fixed d from the last one accepted
@@ -993,12 +1061,14 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
    one that carries it. A trial that comes apart bounds the march: the moves halve towards it, and
    when the last state on the branch and the first apart are within ADH_FORCE_APART zone gaps the
    bodies let go before T is reached: none, and the control bisects the force for the pull-off,
-   the largest tension the branch carries before the bodies come apart. */
+   the largest tension the branch carries before the bodies come apart (each trial of it beyond the
+   force a walk of the step found, m->walk, answered at once). */
 static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *none)
 {
   AdhMinimizer m;
   PetscReal    dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d, xapart = PETSC_MAX_REAL;
-  PetscBool    apart, found;
+  PetscReal    x0, Ffound = 0.0, xbest, rbest, xlo = 0.0, rlo = 0.0, xhi = 0.0, rhi = 0.0; /* the walk's state nearest T, the accepted ones either side */
+  PetscBool    apart, found, fromwalk, haslo = PETSC_FALSE, hashi = PETSC_FALSE, jumped = PETSC_FALSE;
   Vec          pa; /* the last accepted trial's pressure (the step's own at first) */
 
   PetscFunctionBegin;
@@ -1014,6 +1084,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   if (!s->minimizer) PetscCall(Create(s));
   m = s->minimizer;
   if (!m->pforce) PetscCall(VecDuplicate(s->p, &m->pforce));
+  if (!m->pbest) PetscCall(VecDuplicate(s->p, &m->pbest));
   pa = m->pforce;
   PetscCall(VecCopy(s->p, pa));
   xa = d = s->d;
@@ -1025,8 +1096,21 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   dir   = T > F0 ? 1.0 : -1.0; /* more force: press on (d up); less: pull (d down) */
   ra    = dir * (T - F0);      /* the shortfall, > 0 short of T */
   found = (PetscBool)(PetscAbsReal(ra) <= tol);
-  hmax  = ADH_FORCE_MOVE * zone;
-  h     = hmax;
+  if (found) Ffound = F0;
+  /* from a state of a branch this step already walked until it came apart: beyond its largest force, none */
+  fromwalk = (PetscBool)(m->walk.known && m->walk.row == s->curve.n && dir == m->walk.dir && xa == m->walk.start && PetscAbsReal(F0 - m->walk.startF) <= tol);
+  if (!fromwalk) m->walk.known = PETSC_FALSE;
+  if (!found && fromwalk && dir * (T - m->walk.Fmax) > tol) {
+    *none = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  x0    = xa;
+  xbest = xa;
+  rbest = ra;
+  PetscCall(VecCopy(pa, m->pbest));
+  hmax = ADH_FORCE_MOVE * zone;
+  h    = hmax;
+  if (fromwalk && dir * (m->walk.dmax - xa) > 0) h = dir * (m->walk.dmax - xa); /* the first trial at the largest force: past T */
   for (PetscInt k = 0; !found && k < 100000; k++) {
     const PetscReal xb = xa + dir * h;
     PetscReal       Fb, rb;
@@ -1034,8 +1118,9 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
     AdhSolverReturnIfStopped_Private(s);
     rb = dir * (T - Fb);
     if (!apart && PetscAbsReal(rb) <= tol) {
-      d     = xb;
-      found = PETSC_TRUE;
+      d      = xb;
+      Ffound = Fb;
+      found  = PETSC_TRUE;
     } else if (!apart && rb < 0) { /* past T: regula falsi in (xa, xb), each trial from xa's state */
       PetscReal a = xa, fa = ra, b = xb, fb = rb;
       PetscInt  kept = 0;
@@ -1047,8 +1132,9 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
         AdhSolverReturnIfStopped_Private(s);
         rc = apart ? -PetscAbsReal(fb) : dir * (T - Fc); /* apart inside: as past T */
         if (!apart && PetscAbsReal(rc) <= tol) {
-          d     = c;
-          found = PETSC_TRUE;
+          d      = c;
+          Ffound = Fc;
+          found  = PETSC_TRUE;
         } else if (PetscAbsReal(b - a) < 1e-12 * zone) jump = PETSC_TRUE; /* the force jumps across T here */
         else if (rc > 0) {
           a  = c;
@@ -1064,6 +1150,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
       }
       if (jump) { /* no state on this branch carries T: it snaps through to the state past the jump */
         PetscReal Fj;
+        jumped = PETSC_TRUE; /* a walk of two branches: not one to remember */
         PetscCall(TrialAt(s, pa, b, zone, &Fj, &apart));
         AdhSolverReturnIfStopped_Private(s);
         if (apart) { /* past the jump the bodies are apart: they let go before T */
@@ -1081,6 +1168,19 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
       PetscCheck(found, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: the trials' forces do not converge to %g", (double)T);
     } else if (!apart) { /* short still: on along the branch, by the secant where it gains, capped */
       const PetscReal gain = (ra - rb) / h;
+      if (rb < rbest) { /* the walk's nearest to T yet, the state before it one neighbour */
+        xlo   = xa;
+        rlo   = ra;
+        haslo = PETSC_TRUE;
+        hashi = PETSC_FALSE;
+        xbest = xb;
+        rbest = rb;
+        PetscCall(VecCopy(s->p, m->pbest));
+      } else if (!hashi && xa == xbest) { /* the state after it, the other */
+        xhi   = xb;
+        rhi   = rb;
+        hashi = PETSC_TRUE;
+      }
       xa = d = xb;
       ra = rb;
       PetscCall(VecCopy(s->p, pa));
@@ -1096,6 +1196,16 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
     }
   }
   PetscCheck(found || *none, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: no d found that carries the force %g", (double)T);
+  if (*none && !jumped && (haslo && hashi ? PETSC_TRUE : (PetscBool)(xbest == xa && xapart < PETSC_MAX_REAL))) {
+    /* the branch's largest force in dir's sense: between the walk's neighbours of its nearest
+       state, refined; or where the bodies let go, just past the last state */
+    if (haslo && hashi) PetscCall(RefineWalkBest(s, T, dir, zone, tol, xlo, rlo, &xbest, &rbest, xhi, rhi));
+    AdhSolverReturnIfStopped_Private(s);
+    m->walk = (AdhForceWalk){PETSC_TRUE, s->curve.n, dir, x0, F0, T - dir * rbest, xbest};
+  } else if (found && fromwalk && !jumped) { /* a state further along the remembered branch */
+    m->walk.start  = d;
+    m->walk.startF = Ffound;
+  } else m->walk.known = PETSC_FALSE;
   /* found: the last trial is the accepted state; none: the control goes back to the step's */
   PetscFunctionReturn(0);
 }

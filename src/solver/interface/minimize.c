@@ -1139,6 +1139,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
         else if (rc > 0) {
           a  = c;
           fa = rc;
+          PetscCall(VecCopy(s->p, pa)); /* short of T: a state of the branch, the next trials' start */
           if (kept == 1) fb *= 0.5;
           kept = 1;
         } else {

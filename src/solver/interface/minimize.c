@@ -61,8 +61,8 @@ struct _n_AdhMinimizer {
   Vec      u, rpold;   /* the elastic displacement v - b, and the previous projected gradient (Polak-Ribiere) */
   Vec      w, wr;       /* the preconditioner's scaling where the law stiffens the energy, and w r (NULL until needed) */
   PetscBool wheld, wscaled; /* inside a Newton solve: w is the linearisation point's, and whether it scales */
-  Vec      pforce;      /* free boundary, force control: the last accepted trial's pressure (NULL until needed) */
-  Vec      pbest;       /* and the pressure of the walk's state nearest the force (NULL until needed) */
+  Vec      pforce;      /* free boundary, force control: the pressure of the last trial short of the force (NULL until needed) */
+  Vec      pbest, plo;  /* and the pressures of the walk's state nearest the force and of the one before it (NULL until needed) */
   AdhForceWalk walk;    /* what the last walk that came apart found, for the pull-off's bisection */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
@@ -98,12 +98,12 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
 
 /* The bytes a grid point costs the minimisation: its twelve vectors, three more for the Newton
    direction's conjugate gradient (KSPNASH's work vectors), two more for the preconditioner's scaling
-   of a law that stiffens the energy and two for force control on the free boundary, and two bytes
+   of a law that stiffens the energy and three for force control on the free boundary, and two bytes
    of marks per variable, a variable a point on a periodic cell and four on the free boundary's
    padded grid. */
 PetscLogDouble AdhSolverMinimizeMemory_Private(AdhSolver s)
 {
-  const PetscReal vectors = 12.0 + (s->minimize_newton ? 3.0 : 0.0) + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 2.0 : 0.0);
+  const PetscReal vectors = 12.0 + (s->minimize_newton ? 3.0 : 0.0) + (s->crops.stiffens ? 2.0 : 0.0) + (s->boundary == ADH_BOUNDARY_FREE && AdhSolverControlsForce_Private(s) ? 3.0 : 0.0);
   return (s->boundary == ADH_BOUNDARY_FREE ? 4.0 : 1.0) * (vectors * sizeof(PetscScalar) + 2.0);
 }
 
@@ -156,6 +156,7 @@ PetscErrorCode AdhSolverMinimizeDestroy_Private(AdhSolver s)
   PetscCall(VecDestroy(&m->wr));
   PetscCall(VecDestroy(&m->pforce));
   PetscCall(VecDestroy(&m->pbest));
+  PetscCall(VecDestroy(&m->plo));
   PetscCall(PetscFree(m->active));
   PetscCall(KSPDestroy(&m->ksp));
   PetscCall(MatDestroy(&m->H));
@@ -1003,44 +1004,60 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
    control's bisection asks. */
 #define ADH_FORCE_APART 1e-6
 
-/* The walk's state furthest towards T, refined: the vertex of the parabola in d through it (x2, r2,
-   r the shortfall from T) and the accepted states either side (x1 and x3), a trial there from it,
-   until the shortfall changes by less than tol (a few times; the walk's moves leave an error of
-   the second order in them, the vertex one of the third). */
-static PetscErrorCode RefineWalkBest(AdhSolver s, PetscReal T, PetscReal dir, PetscReal zone, PetscReal tol, PetscReal x1, PetscReal r1, PetscReal *x2, PetscReal *r2, PetscReal x3, PetscReal r3)
+/* The walk's state furthest towards T, refined: the vertex of the parabola in d through it (x2,
+   r2, r the shortfall from T; its pressure m->pbest) and the accepted states either side (x1, its
+   pressure m->plo, and x3), a trial there from the state before it in the walk's direction (so
+   that the trials follow the branch as the walk's own), until the shortfall changes by less than
+   tol (a few times; the walk's moves leave an error of the second order in them, the vertex one
+   of the third). A vertex that carries T (r <= tol) ends it: *xT is its d, *rT its shortfall, and
+   for one past T (r < -tol) *xs, *rs the state it was tried from, whose pressure is *ps. */
+static PetscErrorCode RefineWalkBest(AdhSolver s, PetscReal T, PetscReal dir, PetscReal zone, PetscReal tol, PetscReal x1, PetscReal r1, PetscReal *x2, PetscReal *r2, PetscReal x3, PetscReal r3, PetscBool *carries, PetscReal *xT, PetscReal *rT, PetscReal *xs, PetscReal *rs, Vec *ps)
 {
   AdhMinimizer m = s->minimizer;
 
   PetscFunctionBegin;
+  *carries = PETSC_FALSE;
   for (PetscInt k = 0; k < 4; k++) {
     const PetscReal a = (*x2 - x1) * (*r2 - r3), b = (*x2 - x3) * (*r2 - r1), den = a - b;
     PetscReal       xv, Fv, rv;
-    PetscBool       apart;
+    PetscBool       apart, behind;
 
     if (!(PetscAbsReal(den) > 0)) break;
     xv = *x2 - 0.5 * ((*x2 - x1) * a - (*x2 - x3) * b) / den;
     if (!((xv - x1) * (xv - x3) < 0) || xv == *x2) break; /* strictly between the neighbours */
-    PetscCall(TrialAt(s, m->pbest, xv, zone, &Fv, &apart));
+    behind = (PetscBool)((xv - x1) * (xv - *x2) < 0);      /* between x1 and x2: tried from x1's state */
+    PetscCall(TrialAt(s, behind ? m->plo : m->pbest, xv, zone, &Fv, &apart));
     AdhSolverReturnIfStopped_Private(s);
     if (apart) break;
     rv = dir * (T - Fv);
+    if (rv <= tol) { /* the branch carries T here, or passes it between the trial's start and here */
+      *carries = PETSC_TRUE;
+      *xT      = xv;
+      *rT      = rv;
+      *xs      = behind ? x1 : *x2;
+      *rs      = behind ? r1 : *r2;
+      *ps      = behind ? m->plo : m->pbest;
+      break;
+    }
     if (rv < *r2) {
       const PetscBool done = (PetscBool)(*r2 - rv <= tol);
-      if ((xv - x1) * (xv - *x2) < 0) { /* between x1 and x2: x2 becomes the far neighbour */
+      if (behind) { /* x2 becomes the far neighbour */
         x3 = *x2;
         r3 = *r2;
-      } else {
+      } else { /* x2 the near one */
         x1 = *x2;
         r1 = *r2;
+        PetscCall(VecCopy(m->pbest, m->plo));
       }
       *x2 = xv;
       *r2 = rv;
       PetscCall(VecCopy(s->p, m->pbest));
       if (done) break;
     } else {
-      if ((xv - x1) * (xv - *x2) < 0) {
+      if (behind) {
         x1 = xv;
         r1 = rv;
+        PetscCall(VecCopy(s->p, m->plo));
       } else {
         x3 = xv;
         r3 = rv;
@@ -1056,19 +1073,22 @@ static PetscErrorCode RefineWalkBest(AdhSolver s, PetscReal T, PetscReal dir, Pe
    F0) it marches towards T, each trial a minimisation at a fixed d from the last one accepted
    (so the branch is followed as by displacement steps), by secant moves of at most
    ADH_FORCE_MOVE zone gaps. Past T, regula falsi (Illinois) between the last two, each trial from
-   the last accepted state. Where the branch's force turns back before T (a few points letting go
+   the last one short of T. Where the branch's force turns back before T (a few points letting go
    at once), the march goes on through it: under the force the state snaps through to the next
    one that carries it. A trial that comes apart bounds the march: the moves halve towards it, and
    when the last state on the branch and the first apart are within ADH_FORCE_APART zone gaps the
    bodies let go before T is reached: none, and the control bisects the force for the pull-off,
    the largest tension the branch carries before the bodies come apart (each trial of it beyond the
-   force a walk of the step found, m->walk, answered at once). */
+   force a walk of the step found, m->walk, answered at once; short of it, the march starts towards
+   that force's d). Where the refinement of a walk's largest force finds a state that carries T
+   after all, that state is the answer, or the bracket from it (once: the march is not retried
+   twice). */
 static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *none)
 {
   AdhMinimizer m;
   PetscReal    dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d, xapart = PETSC_MAX_REAL;
   PetscReal    x0, Ffound = 0.0, xbest, rbest, xlo = 0.0, rlo = 0.0, xhi = 0.0, rhi = 0.0; /* the walk's state nearest T, the accepted ones either side */
-  PetscBool    apart, found, fromwalk, haslo = PETSC_FALSE, hashi = PETSC_FALSE, jumped = PETSC_FALSE;
+  PetscBool    apart, found, fromwalk, haslo = PETSC_FALSE, hashi = PETSC_FALSE, jumped = PETSC_FALSE, rebracketed = PETSC_FALSE;
   Vec          pa; /* the last accepted trial's pressure (the step's own at first) */
 
   PetscFunctionBegin;
@@ -1085,6 +1105,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   m = s->minimizer;
   if (!m->pforce) PetscCall(VecDuplicate(s->p, &m->pforce));
   if (!m->pbest) PetscCall(VecDuplicate(s->p, &m->pbest));
+  if (!m->plo) PetscCall(VecDuplicate(s->p, &m->plo));
   pa = m->pforce;
   PetscCall(VecCopy(s->p, pa));
   xa = d = s->d;
@@ -1110,7 +1131,8 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   PetscCall(VecCopy(pa, m->pbest));
   hmax = ADH_FORCE_MOVE * zone;
   h    = hmax;
-  if (fromwalk && dir * (m->walk.dmax - xa) > 0) h = dir * (m->walk.dmax - xa); /* the first trial at the largest force: past T */
+  if (fromwalk && dir * (m->walk.dmax - xa) > 0) h = PetscMin(dir * (m->walk.dmax - xa), 5.0 * hmax); /* towards the largest force's d, as far as a move goes */
+again: /* a refinement of the walk's largest force found the branch past T: the bracket from there */
   for (PetscInt k = 0; !found && k < 100000; k++) {
     const PetscReal xb = xa + dir * h;
     PetscReal       Fb, rb;
@@ -1121,7 +1143,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
       d      = xb;
       Ffound = Fb;
       found  = PETSC_TRUE;
-    } else if (!apart && rb < 0) { /* past T: regula falsi in (xa, xb), each trial from xa's state */
+    } else if (!apart && rb < 0) { /* past T: regula falsi in (xa, xb), each trial from the last state short of T */
       PetscReal a = xa, fa = ra, b = xb, fb = rb;
       PetscInt  kept = 0;
       PetscBool jump = PETSC_FALSE;
@@ -1170,6 +1192,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
     } else if (!apart) { /* short still: on along the branch, by the secant where it gains, capped */
       const PetscReal gain = (ra - rb) / h;
       if (rb < rbest) { /* the walk's nearest to T yet, the state before it one neighbour */
+        PetscCall(VecCopy(pa, m->plo));
         xlo   = xa;
         rlo   = ra;
         haslo = PETSC_TRUE;
@@ -1200,10 +1223,31 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   if (*none && !jumped && (haslo && hashi ? PETSC_TRUE : (PetscBool)(xbest == xa && xapart < PETSC_MAX_REAL))) {
     /* the branch's largest force in dir's sense: between the walk's neighbours of its nearest
        state, refined; or where the bodies let go, just past the last state */
-    if (haslo && hashi) PetscCall(RefineWalkBest(s, T, dir, zone, tol, xlo, rlo, &xbest, &rbest, xhi, rhi));
+    PetscBool carries = PETSC_FALSE;
+    PetscReal xT, rT, xs, rs;
+    Vec       ps;
+    if (haslo && hashi) PetscCall(RefineWalkBest(s, T, dir, zone, tol, xlo, rlo, &xbest, &rbest, xhi, rhi, &carries, &xT, &rT, &xs, &rs, &ps));
     AdhSolverReturnIfStopped_Private(s);
-    m->walk = (AdhForceWalk){PETSC_TRUE, s->curve.n, dir, x0, F0, T - dir * rbest, xbest};
-  } else if (found && fromwalk && !jumped) { /* a state further along the remembered branch */
+    if (carries && PetscAbsReal(rT) <= tol) { /* the refinement's trial carries T: the accepted state */
+      *none  = PETSC_FALSE;
+      found  = PETSC_TRUE;
+      d      = xT;
+      Ffound = T - dir * rT;
+      m->walk.known = PETSC_FALSE;
+    } else if (carries && !rebracketed) { /* past T: regula falsi between the state it was tried from and it */
+      *none       = PETSC_FALSE;
+      rebracketed = PETSC_TRUE;
+      PetscCall(VecCopy(ps, pa));
+      xa       = xs;
+      ra       = rs;
+      h        = dir * (xT - xs);
+      xapart   = PETSC_MAX_REAL;
+      haslo    = hashi = PETSC_FALSE;
+      m->walk.known = PETSC_FALSE;
+      fromwalk = PETSC_FALSE;
+      goto again;
+    } else m->walk = (AdhForceWalk){PETSC_TRUE, s->curve.n, dir, x0, F0, T - dir * rbest, xbest};
+  } else if (found && fromwalk && !jumped && dir * (d - m->walk.dmax) <= 0 && dir * (Ffound - m->walk.Fmax) <= tol) { /* a state further along the remembered branch, short of its top */
     m->walk.start  = d;
     m->walk.startF = Ffound;
   } else m->walk.known = PETSC_FALSE;

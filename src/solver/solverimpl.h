@@ -340,6 +340,7 @@ struct _p_AdhSolver {
   PetscBool adhesive;         /* false while computing a Hertz (dgamma = 0) start */
   PetscInt  max_outer;
   PetscInt  step_outer, step_ksp, step_mults, step_ffts;
+  PetscInt  step_id; /* AdhSolverStep()s so far: which step a step-scoped memory belongs to (the force walk's) */
   PetscLogDouble progress_time;  /* last progress line inside a step (-adh_monitor) */
   PetscReal monitor_interval;   /* seconds between progress lines */
   /* the path's progress (path.c): a line now and then, with the time left (-adh_progress) */

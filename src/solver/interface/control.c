@@ -150,6 +150,7 @@ PetscErrorCode AdhSolverStep(AdhSolver s, PetscReal target)
   s->step_outer = 0;
   s->step_ksp   = 0;
   s->step_local_solves = 0;
+  s->step_id++;
   if (s->pulled_off) {
     /* The last step ended in pull-off: the bodies are apart now. */
     PetscCall(AdhSolverClearContact_Private(s));

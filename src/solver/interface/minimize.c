@@ -42,7 +42,7 @@
    of it brackets the force between its start and that largest force's d. */
 typedef struct {
   PetscBool known;
-  PetscInt  row;    /* the curve's row of the step it belongs to */
+  PetscInt  step;   /* the step it belongs to (s->step_id) */
   PetscReal dir;    /* the direction of d the walk took (+1 pressing, -1 pulling) */
   PetscReal start;  /* the d of a state of the branch from which a walk meets the same largest force */
   PetscReal startF; /* and its force */
@@ -1119,7 +1119,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   found = (PetscBool)(PetscAbsReal(ra) <= tol);
   if (found) Ffound = F0;
   /* from a state of a branch this step already walked until it came apart: beyond its largest force, none */
-  fromwalk = (PetscBool)(m->walk.known && m->walk.row == s->curve.n && dir == m->walk.dir && xa == m->walk.start && PetscAbsReal(F0 - m->walk.startF) <= tol);
+  fromwalk = (PetscBool)(m->walk.known && m->walk.step == s->step_id && dir == m->walk.dir && xa == m->walk.start && PetscAbsReal(F0 - m->walk.startF) <= tol);
   if (!fromwalk) m->walk.known = PETSC_FALSE;
   if (!found && fromwalk && dir * (T - m->walk.Fmax) > tol) {
     *none = PETSC_TRUE;
@@ -1246,7 +1246,7 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
       m->walk.known = PETSC_FALSE;
       fromwalk = PETSC_FALSE;
       goto again;
-    } else m->walk = (AdhForceWalk){PETSC_TRUE, s->curve.n, dir, x0, F0, T - dir * rbest, xbest};
+    } else m->walk = (AdhForceWalk){PETSC_TRUE, s->step_id, dir, x0, F0, T - dir * rbest, xbest};
   } else if (found && fromwalk && !jumped && dir * (d - m->walk.dmax) <= 0 && dir * (Ffound - m->walk.Fmax) <= tol) { /* a state further along the remembered branch, short of its top */
     m->walk.start  = d;
     m->walk.startF = Ffound;

@@ -169,21 +169,24 @@ def test_force_control_pulls_off_at_the_same_tension(route):
     assert abs(F / disp - 1) < 0.005
 
 
-def test_force_control_finds_the_branch_largest_tension():
+@pytest.mark.parametrize("lam, through", [(0.5, (-0.019, -0.0235)), (1.0, (-0.0235, -0.0265))])
+def test_force_control_finds_the_branch_largest_tension(lam, through):
     """The minimisation under force control on the free boundary pulls off at the largest tension
     of the branch, to -adh_pulloff_rtol: against a displacement path through the top of the branch
-    in steps of 7.5e-5 (a fortieth of the law's range), on a coarse grid (a zone of 3 elements, 22^2)
-    whose branch is kinked by the zone's edge crossing elements, where the walk's trials alone
-    (moves of 0.02 of the range) miss its top by 0.13%."""
+    in steps of 7.5e-5 and 5e-5 (a fortieth of the law's range), on coarse grids (a zone of 3
+    elements, 22^2 and 38^2) whose branch is kinked by the zone's edge crossing elements, where the
+    walk's trials alone (moves of 0.02 of the range) miss its top by 0.13% (lambda 0.5), and where
+    the states the walk's short moves reach near the top carry less than the displacement path's
+    (lambda 1: 3.7e-4 low while a walk's first move was not aimed by the last walk's slope)."""
     serial_only()
-    lam, rtol = 0.5, 1e-4
+    rtol = 1e-4
     P, A, _ = maugis_pulloff(lam)
     m = float(maugis_sphere(lam, [A])[2][0])
     F, a, zone = -P * FSCALE, A * ASCALE, (m - 1) * A * ASCALE  # F: the pull-off, > 0
     n = 2 * math.ceil(4.0 * m * a / (zone / 3) / 2)
     size = n * zone / 3
     opts = dict(n=n, size=size, gamma=GAMMA, criterion="dugdale", dugdale_stress=s0_for(lam))
-    with adhbem.Solver(path=[0.5 * a * a, -0.019, -0.0235], steps=60, **opts) as s:
+    with adhbem.Solver(path=[0.5 * a * a, *through], steps=60, **opts) as s:
         top = largest_tension(s.solve_path())
     with adhbem.Solver(control="force", path=[0.5 * F, -1.5 * F], steps=40, pulloff_rtol=rtol, **opts) as s:
         force = s.solve_path()

@@ -64,6 +64,8 @@ struct _n_AdhMinimizer {
   Vec      pforce;      /* free boundary, force control: the pressure of the last trial short of the force (NULL until needed) */
   Vec      pbest, plo;  /* and the pressures of the walk's state nearest the force and of the one before it (NULL until needed) */
   AdhForceWalk walk;    /* what the last walk that came apart found, for the pull-off's bisection */
+  PetscBool slope_known; /* the branch's slope dF/dd over the last walk that found its force, */
+  PetscReal slope, slope_from, slope_to; /* from the state at d slope_from to the one at slope_to */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
@@ -1071,13 +1073,16 @@ static PetscErrorCode RefineWalkBest(AdhSolver s, PetscReal T, PetscReal dir, Pe
 /* Force control on the free boundary, whose padded minimisation has no mean mode to carry a force:
    the d on the step's branch at which the minimum carries the force T. From the step's state (d0,
    F0) it marches towards T, each trial a minimisation at a fixed d from the last one accepted
-   (so the branch is followed as by displacement steps), by secant moves of at most
-   ADH_FORCE_MOVE zone gaps. Past T, regula falsi (Illinois) between the last two, each trial from
+   (so the branch is followed as by displacement steps), by secant moves of at most 5
+   ADH_FORCE_MOVE zone gaps, the first aimed by the branch's slope over the last walk that found
+   its force (from this state or to it). Past T, regula falsi (Illinois) between the last two, each trial from
    the last one short of T. Where the branch's force turns back before T (a few points letting go
    at once), the march goes on through it: under the force the state snaps through to the next
-   one that carries it. A trial that comes apart bounds the march: the moves halve towards it, and
-   when the last state on the branch and the first apart are within ADH_FORCE_APART zone gaps the
-   bodies let go before T is reached: none, and the control bisects the force for the pull-off,
+   one that carries it, by moves that grow while the force keeps falling away. A trial that comes
+   apart bounds the march: the moves halve towards it, and when the last state on the branch and
+   the first apart are within ADH_FORCE_APART zone gaps (or the branch's largest force lies behind
+   and the walk's steepest slope cannot reach it before the bodies let go) they let go before T
+   is reached: none, and the control bisects the force for the pull-off,
    the largest tension the branch carries before the bodies come apart (each trial of it beyond the
    force a walk of the step found, m->walk, answered at once; short of it, the march starts towards
    that force's d). Where the refinement of a walk's largest force finds a state that carries T
@@ -1088,7 +1093,9 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   AdhMinimizer m;
   PetscReal    dgamma = s->gamma, zone, F0, tol, dir, xa, ra, h, hmax, d, xapart = PETSC_MAX_REAL;
   PetscReal    x0, Ffound = 0.0, xbest, rbest, xlo = 0.0, rlo = 0.0, xhi = 0.0, rhi = 0.0; /* the walk's state nearest T, the accepted ones either side */
+  PetscReal    steepest = 0.0; /* the largest |dF/dd| between the walk's accepted states */
   PetscBool    apart, found, fromwalk, haslo = PETSC_FALSE, hashi = PETSC_FALSE, jumped = PETSC_FALSE, rebracketed = PETSC_FALSE;
+  PetscInt     receding = 0; /* the walk's accepted moves in a row along which the force fell away from T */
   Vec          pa; /* the last accepted trial's pressure (the step's own at first) */
 
   PetscFunctionBegin;
@@ -1132,6 +1139,8 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   hmax = ADH_FORCE_MOVE * zone;
   h    = hmax;
   if (fromwalk && dir * (m->walk.dmax - xa) > 0) h = PetscMin(dir * (m->walk.dmax - xa), 5.0 * hmax); /* towards the largest force's d, as far as a move goes */
+  else if (m->slope_known && m->slope > 0 && (xa == m->slope_to || xa == m->slope_from)) /* a walk on from the last one's state, or again from its start: aimed by its slope */
+    h = PetscMax(PetscMin(ra / m->slope, 5.0 * hmax), 1e-3 * hmax);
 again: /* a refinement of the walk's largest force found the branch past T: the bracket from there */
   for (PetscInt k = 0; !found && k < 100000; k++) {
     const PetscReal xb = xa + dir * h;
@@ -1191,6 +1200,7 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
       PetscCheck(found, s->comm, PETSC_ERR_NOT_CONVERGED, "Force control on the free boundary: the trials' forces do not converge to %g", (double)T);
     } else if (!apart) { /* short still: on along the branch, by the secant where it gains, capped */
       const PetscReal gain = (ra - rb) / h;
+      steepest = PetscMax(steepest, PetscAbsReal(gain));
       if (rb < rbest) { /* the walk's nearest to T yet, the state before it one neighbour */
         PetscCall(VecCopy(pa, m->plo));
         xlo   = xa;
@@ -1208,7 +1218,10 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
       xa = d = xb;
       ra = rb;
       PetscCall(VecCopy(s->p, pa));
-      h = gain > 0 ? PetscMax(PetscMin(1.5 * rb / gain, 5.0 * hmax), 1e-3 * hmax) : hmax; /* where it turns back, the short moves */
+      receding = gain > 0 ? 0 : receding + 1;
+      /* where it turns back, the short moves; once past the turn (three moves receding), moves that
+         grow as the force keeps falling away, to the gaining moves' cap */
+      h = gain > 0 ? PetscMax(PetscMin(1.5 * rb / gain, 5.0 * hmax), 1e-3 * hmax) : receding > 2 ? PetscMin(1.5 * h, 5.0 * hmax) : hmax;
       if (xapart < PETSC_MAX_REAL) h = PetscMin(h, 0.5 * PetscAbsReal(xapart - xa)); /* towards where the bodies let go */
     } else { /* apart: the march's bound; halfway to it from the same state */
       xapart = xb;
@@ -1216,6 +1229,12 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
     }
     if (!found && xapart < PETSC_MAX_REAL && PetscAbsReal(xapart - xa) < ADH_FORCE_APART * zone) {
       *none = PETSC_TRUE; /* the bodies let go between the last state on the branch and xapart */
+      break;
+    }
+    if (!found && xapart < PETSC_MAX_REAL && haslo && hashi && xbest != xa && ra - 2.0 * steepest * PetscAbsReal(xapart - xa) > PetscMax(rbest, 0.0) + tol) {
+      /* the branch's largest force lies behind, and even at twice the walk's steepest slope the
+         states before xapart cannot come nearer T than it: where exactly they let go is moot */
+      *none = PETSC_TRUE;
       break;
     }
   }
@@ -1251,6 +1270,13 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
     m->walk.start  = d;
     m->walk.startF = Ffound;
   } else m->walk.known = PETSC_FALSE;
+  /* the slope that aims the next walk's first move: over this one, where it found T on one branch */
+  m->slope_known = (PetscBool)(found && !jumped && d != x0);
+  if (m->slope_known) {
+    m->slope      = (Ffound - F0) / (d - x0);
+    m->slope_from = x0;
+    m->slope_to   = d;
+  }
   /* found: the last trial is the accepted state; none: the control goes back to the step's */
   PetscFunctionReturn(0);
 }

@@ -265,6 +265,7 @@ struct _p_AdhSolver {
   PetscInt        minimize_max_it;  /* -adh_minimize_max_it */
   PetscBool       minimize_pc;      /* -adh_minimize_pc fourier: the compliance preconditions it */
   PetscBool       minimize_newton;  /* -adh_minimize_direction newton (else polak-ribiere) */
+  PetscReal       minimize_trust;   /* -adh_minimize_trust_region: the Newton step's trust region over the last step (0: none) */
   PetscBool       minimize_monitor; /* -adh_minimize_monitor: a line per iteration */
   PetscBool       memory_check;     /* refuse a grid that clearly does not fit into a node (estimate.c) */
   PetscReal       rms_slope, rms_curvature, full_contact_energy; /* a rough profile's, for the two estimates (roughness.c, made once a profile; 0: none) */

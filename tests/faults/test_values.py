@@ -30,6 +30,7 @@ CONTEXT = {
     "exponential_range": dict(criterion="exponential", gamma=1e-3),
     "minimize_rtol": dict(criterion="exponential", gamma=1e-3, exponential_range=0.01),
     "minimize_max_it": dict(criterion="exponential", gamma=1e-3, exponential_range=0.01),
+    "minimize_trust_region": dict(criterion="exponential", gamma=1e-3, exponential_range=0.01),
     "pulloff_rtol": dict(control="force", boundary="periodic"),
     "fields_stride": dict(fields="pressure"),
 }

@@ -64,6 +64,8 @@ struct _n_AdhMinimizer {
   Vec      pforce;      /* free boundary, force control: the pressure of the last trial short of the force (NULL until needed) */
   Vec      pbest, plo;  /* and the pressures of the walk's state nearest the force and of the one before it (NULL until needed) */
   AdhForceWalk walk;    /* what the last walk that came apart found, for the pull-off's bisection */
+  PetscReal radius;     /* the Newton step's trust region (0 at a minimisation's first step: none) */
+  PetscReal normd;      /* and the last Newton direction's length in the preconditioner's norm */
   PetscBool slope_known; /* the branch's slope dF/dd over the last walk that found its force, */
   PetscReal slope, slope_from, slope_to; /* from the state at d slope_from to the one at slope_to */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
@@ -95,11 +97,13 @@ PetscErrorCode AdhSolverMinimizeSetFromOptions_Private(AdhSolver s, AdhOptionIte
   s->minimize_pc = (PetscBool)(pc == 1);
   PetscCall(PetscOptionsEList("-adh_minimize_direction", "The direction of a cohesive law's minimisation: an inexact Newton step by conjugate gradients on the free points (newton) or the preconditioned gradient conjugated by Polak-Ribiere (polak-ribiere)", "AdhSolver", dirs, 2, dirs[dir], &dir, NULL));
   s->minimize_newton = (PetscBool)(dir == 1);
+  PetscCall(AdhOptionsReal("-adh_minimize_trust_region", "The Newton direction's conjugate gradient stays within this many times the last step's length (Steihaug: along negative curvature to the region's edge); 0: it stops at negative curvature", "AdhSolver", s->minimize_trust, &s->minimize_trust, NULL));
+  PetscCheck(s->minimize_trust >= 0, PetscObjectComm((PetscObject)s), PETSC_ERR_ARG_OUTOFRANGE, "-adh_minimize_trust_region must be 0 (none) or positive, got %g", (double)s->minimize_trust);
   PetscFunctionReturn(0);
 }
 
 /* The bytes a grid point costs the minimisation: its twelve vectors, three more for the Newton
-   direction's conjugate gradient (KSPNASH's work vectors), two more for the preconditioner's scaling
+   direction's conjugate gradient (KSPSTCG's work vectors), two more for the preconditioner's scaling
    of a law that stiffens the energy and three for force control on the free boundary, and two bytes
    of marks per variable, a variable a point on a periodic cell and four on the free boundary's
    padded grid. */
@@ -120,10 +124,13 @@ PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver s, PetscViewer viewer)
   if (ishdf5) {
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_rtol", PETSC_REAL, &s->minimize_rtol));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_direction", PETSC_STRING, s->minimize_newton ? "newton" : "polak-ribiere"));
+    if (s->minimize_newton) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "minimize_trust_region", PETSC_REAL, &s->minimize_trust));
   }
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy in the gaps, projected onto the wall: %s, preconditioner %s, to a relative projected gradient %g\n", s->minimize_newton ? "inexact Newton steps by conjugate gradients on the free points" : "Polak-Ribiere conjugate gradient", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
+    if (s->minimize_newton && s->minimize_trust > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "the Newton steps' conjugate gradients within a trust region of %g times the last step\n", (double)s->minimize_trust));
+    else if (s->minimize_newton) PetscCall(PetscViewerASCIIPrintf(viewer, "the Newton steps' conjugate gradients stop at negative curvature (no trust region)\n"));
     if (s->minimizer && s->minimizer->states) {
       if (s->minimize_newton) PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " Newton steps (%" PetscInt_FMT " conjugate gradient iterations) over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->cg_total, s->minimizer->states));
       else PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " iterations over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->states));
@@ -632,11 +639,16 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
    preconditions its elastic part exactly; the conjugate gradient of the nonlinear problem loses
    its conjugacy wherever the law's curvature changes along the path (half its iterations restart,
    docs/theory/minimisation.md), so the direction is instead an inexact Newton step: the Hessian
-   on the free points, H = S + phi''(v), solved by CG (KSPNASH) with the same preconditioner, to a relative
+   on the free points, H = S + phi''(v), solved by CG with the same preconditioner, to a relative
    residual min(1/2, sqrt(rel)) (Eisenstat and Walker's choice 2 in the spirit, which measured
-   cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG stops with the
-   iterate so far (Nash's truncation), a descent direction; the line search is the one the
-   gradient's directions take, so the branch is followed the same way. */
+   cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG follows the
+   direction of negative curvature to the edge of a trust region (Steihaug's KSPSTCG), whose
+   radius is -adh_minimize_trust_region times the last step's length in the preconditioner's norm
+   (none at a minimisation's first step: there, and with the option 0, CG stops with the iterate
+   so far, Nash's truncation); either is a descent direction, and the line search is the one the
+   gradient's directions take, so the branch is followed the same way. The soft directions the
+   edge of the zone moves along are where H turns indefinite; stopping there cost Maugis' sphere at
+   lambda 3 a fifth more FFT pairs (docs/theory/minimisation.md). */
 
 /* y = P (S x + phi''(v) x), P the restriction to the free points (and mean-free with fixmean). */
 static PetscErrorCode HessianMult(Mat H, Vec x, Vec y)
@@ -688,9 +700,10 @@ static PetscErrorCode HessianPC(PC pc, Vec x, Vec y)
 }
 
 /* t: the inexact Newton direction, H t = -rp to rtol on the free points; *its the inner
-   iterations. KSPNASH stops before a direction of negative curvature (KSPCG does not at its first
-   iteration: it would step uphill); one at the first iteration leaves t = 0, and then the
-   direction is the preconditioned gradient, CG's own first. */
+   iterations. KSPSTCG follows a direction of negative curvature to the trust region's edge, or
+   without one (radius 0) stops before it (KSPCG does not at its first iteration: it would step
+   uphill); one at the first iteration without a region leaves t = 0, and then the direction is
+   the preconditioned gradient, CG's own first. */
 static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, PetscBool fixmean, PetscBool force, PetscReal rtol, PetscInt *its)
 {
   AdhMinimizer       m = s->minimizer;
@@ -706,7 +719,7 @@ static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, Pet
     PetscCall(KSPCreate(s->comm, &m->ksp));
     PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sadh_minimize_", s->prefix ? s->prefix : "")); /* a solve's -ksp_view and the like are not this KSP's */
     PetscCall(KSPSetOptionsPrefix(m->ksp, prefix));
-    PetscCall(KSPSetType(m->ksp, KSPNASH)); /* CG that stops at negative curvature, even on its first iteration (KSPCG does not); radius 0: no trust region */
+    PetscCall(KSPSetType(m->ksp, KSPSTCG)); /* CG within a trust region (radius 0: none, and it stops at negative curvature, even on its first iteration, as KSPCG does not) */
     PetscCall(KSPSetOperators(m->ksp, m->H, m->H));
     PetscCall(KSPGetPC(m->ksp, &pc));
     PetscCall(PCSetType(pc, PCSHELL));
@@ -722,7 +735,9 @@ static PetscErrorCode NewtonDirection(AdhSolver s, const PetscScalar *gamma, Pet
   PetscCall(VecAXPBY(m->z, -1.0, 0.0, m->rp));
   if (s->minimize_pc) PetscCall(CurvatureScaling(s, gamma, &m->wscaled)); /* once for the solve, not at every iteration */
   m->wheld = s->minimize_pc;
+  PetscCall(KSPCGSetRadius(m->ksp, m->radius));
   PetscCall(KSPSolve(m->ksp, m->z, m->t));
+  PetscCall(KSPCGGetNormD(m->ksp, &m->normd));
   m->wheld = PETSC_FALSE;
   PetscCall(KSPGetConvergedReason(m->ksp, &reason));
   PetscCall(KSPGetIterationNumber(m->ksp, its));
@@ -751,6 +766,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
   *none = PETSC_FALSE;
   if (!s->minimizer) PetscCall(Create(s));
   m = s->minimizer;
+  m->radius = 0.0; /* a minimisation's first Newton step: no trust region */
   if (s->gamma_field && m->surface) { /* the field on the variables, none on the padding */
     if (!m->gamma) PetscCall(VecDuplicate(m->v, &m->gamma));
     PetscCall(Move(s, s->gamma_field, m->gamma, 0.0, PETSC_FALSE));
@@ -806,6 +822,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     PetscReal rpn, pn, tr0, tq, alpha, zrp, beta = 0.0;
     PetscInt  restarts0;
     PetscScalar dot;
+    const PetscBool newton = (PetscBool)(s->minimize_newton && !steepest); /* this iteration's direction a Newton step */
 
     PetscCall(AdhSolverStopRequested_Private(s, &stop));
     if (stop) break;
@@ -838,7 +855,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     }
     /* the direction: the Newton step on the free points, or the preconditioned projected gradient
        conjugated unless the held points changed; after a stall, the gradient itself */
-    if (s->minimize_newton && !steepest) {
+    if (newton) {
       PetscInt cg;
       PetscCall(NewtonDirection(s, gamma, fixmean, force, PetscMin(0.5, PetscSqrtReal(rel)), &cg));
       cg_its += cg;
@@ -878,6 +895,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     PetscCall(VecDot(m->t, m->q, &dot));
     tq = PetscRealPart(dot);
     PetscCall(LineSearch(s, gamma, tr0, tq, &alpha));
+    if (newton && restarts == restarts0) m->radius = s->minimize_trust * alpha * m->normd; /* the next Newton step's region: the option times this step */
     /* the step, projected; shorter while the projection undoes the descent (the energy's change
        is taken from the differences, exact where the energy itself has no digits left) */
     PetscCall(VecCopy(m->v, m->z)); /* z: the gaps before, pold: their elastic pressure */

@@ -58,6 +58,7 @@ PetscErrorCode AdhSolverCreate(MPI_Comm comm, AdhSolver *solver)
   s->path_stopped    = -1;
   s->max_outer = 100000;
   s->minimize_rtol   = 1e-8;
+  s->minimize_trust  = 2.0;
   s->minimize_max_it = 100000;
   s->minimize_pc     = PETSC_TRUE;
   s->minimize_newton = PETSC_TRUE;

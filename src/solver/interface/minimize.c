@@ -65,9 +65,9 @@ struct _n_AdhMinimizer {
   Vec      pbest, plo;  /* and the pressures of the walk's state nearest the force and of the one before it (NULL until needed) */
   AdhForceWalk walk;    /* what the last walk that came apart found, for the pull-off's bisection */
   PetscReal radius;     /* the Newton step's trust region (0 at a minimisation's first step: none) */
-  PetscReal normd;      /* and the last Newton direction's length in the preconditioner's norm */
+  PetscReal normd;      /* and the last Newton direction's length (Euclidean in the gaps, KSPSTCG's default) */
   PetscBool slope_known; /* the branch's slope dF/dd over the last walk that found its force, */
-  PetscReal slope, slope_from, slope_to; /* from the state at d slope_from to the one at slope_to */
+  PetscReal slope, slope_from, slope_to, slope_Ffrom, slope_Fto; /* from the state (d, F) at slope_from to the one at slope_to */
   PetscReal K00;        /* an element's displacement under its own unit pressure (Love), for that scaling */
   char    *active;      /* the points held at the wall (gap 0, pushed into it) */
   PetscInt n;           /* local points */
@@ -643,9 +643,9 @@ static PetscErrorCode ProjectOntoBound(AdhSolver s, PetscBool fixmean, PetscReal
    residual min(1/2, sqrt(rel)) (Eisenstat and Walker's choice 2 in the spirit, which measured
    cheaper than 0.1 or 0.01). Where the law's concave part makes H indefinite, CG follows the
    direction of negative curvature to the edge of a trust region (Steihaug's KSPSTCG), whose
-   radius is -adh_minimize_trust_region times the last step's length in the preconditioner's norm
-   (none at a minimisation's first step: there, and with the option 0, CG stops with the iterate
-   so far, Nash's truncation); either is a descent direction, and the line search is the one the
+   radius is -adh_minimize_trust_region times the last step's length (Euclidean in the gaps;
+   none at a minimisation's first step and after a stall: there, and with the option 0, CG stops
+   with the iterate so far, Nash's truncation); either is a descent direction, and the line search is the one the
    gradient's directions take, so the branch is followed the same way. The soft directions the
    edge of the zone moves along are where H turns indefinite; stopping there cost Maugis' sphere at
    lambda 3 a fifth more FFT pairs (docs/theory/minimisation.md). */
@@ -895,7 +895,6 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
     PetscCall(VecDot(m->t, m->q, &dot));
     tq = PetscRealPart(dot);
     PetscCall(LineSearch(s, gamma, tr0, tq, &alpha));
-    if (newton && restarts == restarts0) m->radius = s->minimize_trust * alpha * m->normd; /* the next Newton step's region: the option times this step */
     /* the step, projected; shorter while the projection undoes the descent (the energy's change
        is taken from the differences, exact where the energy itself has no digits left) */
     PetscCall(VecCopy(m->v, m->z)); /* z: the gaps before, pold: their elastic pressure */
@@ -920,6 +919,7 @@ static PetscErrorCode MinimizeAt(AdhSolver s, PetscBool force, PetscReal target,
       }
       alpha *= 0.5;
     }
+    if (newton && restarts == restarts0) m->radius = stalled ? 0.0 : s->minimize_trust * alpha * m->normd; /* the next Newton step's region: the option times the step taken (none after a stall) */
     if (s->minimize_monitor) {
       char conj[64] = "";
       if (!s->minimize_newton) PetscCall(PetscSNPrintf(conj, sizeof(conj), ", beta %.3g", (double)beta));
@@ -1014,7 +1014,8 @@ static PetscErrorCode TrialAt(AdhSolver s, Vec from, PetscReal d, PetscReal zone
 }
 
 /* A free boundary's force-control trial moves d by at most this share of the law's zone gap where
-   the branch's force turns back (five times it where it gains): the steps of a
+   the branch's force turns back (five times it where it gains, and where it keeps falling away
+   past the turn): the steps of a
    displacement-controlled path of some hundred states, fine enough that the march does not step
    over the branch's largest tension (the force is flat there, its error of the second order in
    the move). */
@@ -1157,7 +1158,7 @@ static PetscErrorCode MinimizeForceFree(AdhSolver s, PetscReal T, PetscBool *non
   hmax = ADH_FORCE_MOVE * zone;
   h    = hmax;
   if (fromwalk && dir * (m->walk.dmax - xa) > 0) h = PetscMin(dir * (m->walk.dmax - xa), 5.0 * hmax); /* towards the largest force's d, as far as a move goes */
-  else if (m->slope_known && m->slope > 0 && (xa == m->slope_to || xa == m->slope_from)) /* a walk on from the last one's state, or again from its start: aimed by its slope */
+  else if (m->slope_known && m->slope > 0 && ((xa == m->slope_to && PetscAbsReal(F0 - m->slope_Fto) <= tol) || (xa == m->slope_from && PetscAbsReal(F0 - m->slope_Ffrom) <= tol))) /* a walk on from the last one's state, or again from its start: aimed by its slope */
     h = PetscMax(PetscMin(ra / m->slope, 5.0 * hmax), 1e-3 * hmax);
 again: /* a refinement of the walk's largest force found the branch past T: the bracket from there */
   for (PetscInt k = 0; !found && k < 100000; k++) {
@@ -1210,6 +1211,8 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
         PetscCall(VecCopy(s->p, pa)); /* and marches back to T on the new branch */
         xa = d = b;
         dir = -dir;
+        receding = 0; /* the new branch's moves and slopes are its own */
+        steepest = 0.0;
         ra  = dir * (T - Fj);
         h   = hmax;
         xapart = PETSC_MAX_REAL;
@@ -1249,7 +1252,7 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
       *none = PETSC_TRUE; /* the bodies let go between the last state on the branch and xapart */
       break;
     }
-    if (!found && xapart < PETSC_MAX_REAL && haslo && hashi && xbest != xa && ra - 2.0 * steepest * PetscAbsReal(xapart - xa) > PetscMax(rbest, 0.0) + tol) {
+    if (!found && !jumped && xapart < PETSC_MAX_REAL && haslo && hashi && xbest != xa && ra - 2.0 * steepest * PetscAbsReal(xapart - xa) > PetscMax(rbest, 0.0) + tol) {
       /* the branch's largest force lies behind, and even at twice the walk's steepest slope the
          states before xapart cannot come nearer T than it: where exactly they let go is moot */
       *none = PETSC_TRUE;
@@ -1280,6 +1283,8 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
       h        = dir * (xT - xs);
       xapart   = PETSC_MAX_REAL;
       haslo    = hashi = PETSC_FALSE;
+      receding = 0;
+      steepest = 0.0;
       m->walk.known = PETSC_FALSE;
       fromwalk = PETSC_FALSE;
       goto again;
@@ -1291,9 +1296,11 @@ again: /* a refinement of the walk's largest force found the branch past T: the 
   /* the slope that aims the next walk's first move: over this one, where it found T on one branch */
   m->slope_known = (PetscBool)(found && !jumped && d != x0);
   if (m->slope_known) {
-    m->slope      = (Ffound - F0) / (d - x0);
-    m->slope_from = x0;
-    m->slope_to   = d;
+    m->slope       = (Ffound - F0) / (d - x0);
+    m->slope_from  = x0;
+    m->slope_Ffrom = F0;
+    m->slope_to    = d;
+    m->slope_Fto   = Ffound;
   }
   /* found: the last trial is the accepted state; none: the control goes back to the step's */
   PetscFunctionReturn(0);

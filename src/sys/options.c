@@ -14,7 +14,7 @@ static const char *const AdhOptionNames[] = {
   "adh_elastic", "adh_cone_slope", "adh_topography", "adh_topography_dataset", "adh_topography_kind", "adh_hurst",
   "adh_rms_height", "adh_rms_slope", "adh_rolloff_wavelength", "adh_cutoff_wavelength", "adh_seed", "adh_control",
   "adh_criterion", "adh_path", "adh_steps", "adh_stop_at_pulloff", "adh_start", "adh_attach", "adh_certify", "adh_cascade_rtol", "adh_cascade_single", "adh_cascade_apart", "adh_cascade_local", "adh_cascade_local_rtol",
-  "adh_memory_check", "adh_box", "adh_max_outer", "adh_minimize_rtol", "adh_minimize_max_it", "adh_minimize_monitor", "adh_minimize_pc", "adh_minimize_direction", "adh_predictor", "adh_monitor", "adh_monitor_interval", "adh_progress",
+  "adh_memory_check", "adh_box", "adh_max_outer", "adh_minimize_rtol", "adh_minimize_max_it", "adh_minimize_monitor", "adh_minimize_pc", "adh_minimize_direction", "adh_minimize_trust_region", "adh_predictor", "adh_monitor", "adh_monitor_interval", "adh_progress",
   "adh_fields", "adh_fields_stride", "adh_output", "adh_fftw_planner", "adh_fftw_timelimit", "adh_fftw_layout", "adh_view", "adh_traceback", "adh_checkpoint", "adh_checkpoint_every", "adh_restart",
 };
 

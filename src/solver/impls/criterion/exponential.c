@@ -15,6 +15,8 @@
 .  -adh_minimize_pc <fourier,none>   - the preconditioner of the minimisation
 .  -adh_minimize_direction <newton,polak-ribiere> - inexact Newton steps by conjugate gradients on the free points,
                                        or the preconditioned gradient conjugated by Polak-Ribiere
+.  -adh_minimize_trust_region <2>    - the Newton steps' trust region, in times the last step (0: none, stop at
+                                       negative curvature)
 -  -adh_minimize_monitor             - a line per iteration (and per Newton direction, its conjugate gradients)
 
    Level: intermediate

@@ -12,7 +12,7 @@
    Options Database Keys:
 +  -adh_criterion lj93          - selects this law
 .  -adh_lj93_distance <z0>      - the equilibrium distance z0 (required, > 0), the law's length
--  -adh_minimize_rtol, -adh_minimize_max_it, -adh_minimize_pc, -adh_minimize_direction - the minimisation, as for
+-  -adh_minimize_rtol, -adh_minimize_max_it, -adh_minimize_pc, -adh_minimize_direction, -adh_minimize_trust_region - the minimisation, as for
                                  `ADHCRITERIONEXPONENTIAL`
 
    Level: intermediate

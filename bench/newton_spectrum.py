@@ -28,7 +28,12 @@ The preconditioners (rows of the table):
 The table: lambda, N, Maugis' a/zone, free points, the preconditioner, the coarse space's size,
 and for each right-hand side the iterations to each tolerance. Serial, in this process.
 
-    ./run bench newton_spectrum [--lambdas 1,2] [--width 3] [--steps 40] [--tols 1e-2,1e-4,1e-6]
+--modes K: also the K slowest eigenvectors of the fourier-preconditioned system (K_ff H, by a
+dense symmetric eigendecomposition: minutes at 8 000 free points), each with its eigenvalue over
+the largest and the share of its squared amplitude in the zone (g < (1 + smoothing) range),
+within 3 ranges of gap and within 10: where the soft modes a coarse space must hold live.
+
+    ./run bench newton_spectrum [--lambdas 1,2] [--width 3] [--steps 40] [--tols 1e-2,1e-4,1e-6] [--modes 4]
 """
 import argparse
 import math
@@ -119,14 +124,15 @@ def main():
     ap.add_argument("--steps", type=int, default=40)
     ap.add_argument("--smoothing", type=float, default=0.2, help="-adh_dugdale_smoothing")
     ap.add_argument("--tols", default="1e-2,1e-4,1e-6")
+    ap.add_argument("--modes", type=int, default=0, help="also the slowest eigenvectors' shares in and near the zone")
     args = ap.parse_args()
     tols = [float(t) for t in args.tols.split(",")]
     e = args.smoothing
     head = f"{'lambda':>6} {'N':>4} {'a/zone':>6} {'free':>6} {'preconditioner':>18} {'coarse':>6}  iterations to {', '.join(args.tols.split(','))}: random; zone"
     print(f"# the minimisation's Newton system at the largest tension of Maugis' sphere (zone {args.width:g} elements), dense")
     print(head, flush=True)
-    rng_ = np.random.default_rng(0)
     for lam in (float(v) for v in args.lambdas.split(",")):
+        rng_ = np.random.default_rng(0)  # each lambda's right-hand sides whatever the others run
         g, N, s0, a_zone, K = largest_tension_state(lam, args.width, args.steps, e)
         rng = GAMMA / s0
         lo, hi = rng * (1 - e), rng * (1 + e)
@@ -148,6 +154,14 @@ def main():
         for name, prec, k in rows:
             its = "; ".join(", ".join("-" if i is None else str(i) for i in pcg(H, prec, b, tols)) for b in rhs) if prec else "the zone's Hessian is indefinite"
             print(f"{lam:>6g} {N:>4} {a_zone:>6.2f} {len(f):>6} {name:>18} {k:>6}  {its}", flush=True)
+        if args.modes > 0:  # x = L y, y the eigenvectors of L^T H L (K_ff = L L^T): those of K_ff H
+            L = np.linalg.cholesky(Kf)
+            w, V = np.linalg.eigh(L.T @ H @ L)
+            for j in range(min(args.modes, len(w))):
+                x = (L @ V[:, j]) ** 2
+                x /= x.sum()
+                print(f"#   lambda {lam:g}, slow mode {j}: eigenvalue {w[j] / w[-1]:.4f} of the largest; squared amplitude "
+                      f"{x[gf < hi].sum():.2f} in the zone, {x[gf < 3 * rng].sum():.2f} within 3 ranges, {x[gf < 10 * rng].sum():.2f} within 10", flush=True)
 
 
 if __name__ == "__main__":

@@ -279,7 +279,8 @@ def test_same_curve_on_any_number_of_ranks(route):
 
 @pytest.mark.parametrize("route", (None,) + ROUTES[1:], ids=["default", "fixed-point"])
 def test_results_attributes_and_restart_refusal(tmp_path, route):
-    """The results file records s0, the range, the route and the sphere's lambda, and its contact
+    """The results file records s0, the range, the route and the sphere's lambda (and on the
+    minimisation its Newton direction and trust region), and its contact
     field the cohesive zone (2) beside the contact (1), whose tension is s0 (the minimisation's
     smoothed law: s0 down to s0/2 at the range); a restart with another s0 is refused, naming
     -adh_dugdale_stress, and one with the same goes on."""
@@ -323,6 +324,12 @@ def test_results_attributes_and_restart_refusal(tmp_path, route):
         assert (route_attr.decode() if isinstance(route_attr, bytes) else route_attr) == (route or "minimize")
         assert float(f.attrs["tabor_lambda"]) == pytest.approx(1.0, rel=1e-9)
         assert float(f.attrs["asperity_tabor"]) == pytest.approx(1.0, rel=1e-9)  # the resolution report's, of the sphere
+        if route is None:  # the minimisation's Newton steps and their trust region (the default, 2)
+            direction = f.attrs["minimize_direction"]
+            assert (direction.decode() if isinstance(direction, bytes) else direction) == "newton"
+            assert float(f.attrs["minimize_trust_region"]) == 2.0
+        else:
+            assert "minimize_trust_region" not in f.attrs
     r = subprocess.run(base + ["-adh_dugdale_stress", str(2 * s0), "-adh_restart", str(ck), "-adh_output", str(tmp_path / "b.h5")],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode != 0 and "-adh_dugdale_stress" in r.stderr, r.stderr[-2000:]

@@ -129,7 +129,7 @@ PetscErrorCode AdhSolverMinimizeView_Private(AdhSolver s, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (isascii) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "steps minimise the energy in the gaps, projected onto the wall: %s, preconditioner %s, to a relative projected gradient %g\n", s->minimize_newton ? "inexact Newton steps by conjugate gradients on the free points" : "Polak-Ribiere conjugate gradient", s->minimize_pc ? "fourier" : "none", (double)s->minimize_rtol));
-    if (s->minimize_newton && s->minimize_trust > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "the Newton steps' conjugate gradients within a trust region of %g times the last step\n", (double)s->minimize_trust));
+    if (s->minimize_newton && s->minimize_trust > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "the Newton steps' conjugate gradients within a trust region of %.4g times the last step\n", (double)s->minimize_trust));
     else if (s->minimize_newton) PetscCall(PetscViewerASCIIPrintf(viewer, "the Newton steps' conjugate gradients stop at negative curvature (no trust region)\n"));
     if (s->minimizer && s->minimizer->states) {
       if (s->minimize_newton) PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " Newton steps (%" PetscInt_FMT " conjugate gradient iterations) over %" PetscInt_FMT " steps\n", s->minimizer->its_total, s->minimizer->cg_total, s->minimizer->states));
